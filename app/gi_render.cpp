@@ -1,0 +1,136 @@
+// gi-render: renders a preset (or a glTF file with its own cameras and lights) headless through
+// EGL, and writes image.png, image.exr, stats.json and, with --views, every debug view.
+#include "gi/platform/egl_context.h"
+#include "gi/preset/preset.h"
+#include "gi/render/image_io.h"
+#include "gi/render/renderer.h"
+#include "gi/gl/debug.h"
+#include "gi/util/error.h"
+#include "gi/util/paths.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void printSettings(bool asJson) {
+    auto list = gi::listSettings();
+    if (asJson) {
+        gi::json arr = gi::json::array();
+        for (auto& s : list) arr.push_back(gi::settingInfoToJson(s));
+        std::cout << arr.dump(2) << "\n";
+        return;
+    }
+    for (auto& s : list) {
+        std::string range;
+        if (!s.choices.empty()) {
+            for (auto& c : s.choices) range += (range.empty() ? "" : "|") + c;
+        } else if (std::isfinite(s.min) || std::isfinite(s.max)) {
+            range = "[" + gi::detail::formatNumber(s.min) + ", " + gi::detail::formatNumber(s.max) + "]";
+        }
+        std::printf("%-26s %-6s %-22s default %-18s %s%s%s (change: %s)\n", s.key.c_str(), s.type.c_str(), range.c_str(),
+                    s.defaultValue.dump().c_str(), s.description.c_str(), s.unit.empty() ? "" : ", ", s.unit.c_str(),
+                    s.cost.c_str());
+    }
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"gi-render: render a GI Workbench preset or a glTF file headless"};
+    std::string input, outDir;
+    int width = 640, height = 360, frames = 1, camera = -1;
+    std::vector<std::string> sets;
+    bool views = false, list = false, listJson = false;
+    app.add_option("input", input, "Preset (.json) or glTF file (.gltf, .glb); none: the built-in default preset");
+    app.add_option("--out", outDir, "Output folder (created if missing)");
+    app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(1, 16384));
+    app.add_option("--height", height, "Image height in pixels")->check(CLI::Range(1, 16384));
+    app.add_option("--frames", frames, "Frames to render before writing (for temporal techniques)")->check(CLI::Range(1, 10000));
+    app.add_option("--camera", camera, "Use the glTF file's camera N")->check(CLI::Range(0, 1023));
+    app.add_option("--set", sets, "Override a setting: key=value (see --list-settings)");
+    app.add_flag("--views", views, "Also write every debug view as DIR/views/NAME.png");
+    app.add_flag("--list-settings", list, "Print every settings key and exit");
+    app.add_flag("--json", listJson, "With --list-settings: print a JSON list");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    if (list) {
+        printSettings(listJson);
+        return 0;
+    }
+    if (outDir.empty()) throw gi::Error("no output folder: give --out DIR");
+
+    // No input: the built-in default preset, which needs no files.
+    gi::Preset preset = input.empty() ? gi::Preset() : gi::presetForInput(input, camera);
+    if (input.empty()) input = "(built-in default)";
+    for (const auto& s : sets) gi::applySetting(preset, s);
+
+    gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder);
+    for (const auto& w : scene.warnings) std::fprintf(stderr, "gi-render: warning: %s: %s\n", scene.name.c_str(), w.c_str());
+    gi::FrameSettings frame = gi::frameSettings(preset, scene, width, height);
+    // Refuse before any GL allocation (the scene estimate counts vertices, indices and textures).
+    size_t sceneBytes = scene.vertices.size() * sizeof(gi::Vertex) + scene.indices.size() * 4;
+    for (auto& t : scene.textures) sceneBytes += t.rgba.size() * 4 / 3;
+    gi::Renderer::checkBudget(frame, sceneBytes);
+
+    fs::create_directories(outDir);
+    gi::EGLContextHeadless context;
+    gi::Renderer renderer;
+    renderer.setScene(scene);
+    for (int f = 0; f < frames; ++f) renderer.render(frame);
+    renderer.timer().resolve(true);
+    if (gi::gl::debugErrorCount() > 0) throw gi::Error("OpenGL reported errors while rendering (see above)");
+
+    fs::path out(outDir);
+    gi::writePNG(out / "image.png", width, height, renderer.readLDR());
+    gi::writeEXR(out / "image.exr", width, height, renderer.readHDR());
+
+    gi::json passes = gi::json::array();
+    double total = 0;
+    for (const auto& p : renderer.passStats()) {
+        passes.push_back({{"name", p.name}, {"gpuMs", p.gpuMs}, {"memoryBytes", p.memoryBytes}});
+        total += p.gpuMs;
+    }
+    gi::json stats = {{"input", input},
+                      {"width", width},
+                      {"height", height},
+                      {"frames", frames},
+                      {"renderer", context.renderer()},
+                      {"passes", passes},
+                      {"gpuMsTotal", total},
+                      {"memoryBytes", renderer.memoryBytes()},
+                      {"scene", {{"name", scene.name}, {"triangles", scene.triangleCount()}, {"warnings", scene.warnings}}},
+                      {"settings", gi::presetToJson(preset)}};
+    if (views) {
+        fs::create_directories(out / "views");
+        for (const auto& v : renderer.debugViews()) {
+            int w = v.width, h = v.height;
+            // Keep view images modest: the longest side at most 1024.
+            float scale = std::min(1.0f, 1024.0f / float(std::max(w, h)));
+            w = std::max(1, int(float(w) * scale));
+            h = std::max(1, int(float(h) * scale));
+            gi::writePNG(out / "views" / (v.name + ".png"), w, h, renderer.renderViewImage(v, w, h));
+        }
+    }
+    gi::writeFileAtomic(out / "stats.json", stats.dump(2) + "\n");
+    std::printf("gi-render: %s -> %s (%dx%d, %.1f ms GPU)\n", input.c_str(), (out / "image.png").c_str(), width, height, total);
+    for (const auto& p : renderer.passStats()) std::printf("  %-10s %8.2f ms %8.1f MiB\n", p.name.c_str(), p.gpuMs, double(p.memoryBytes) / (1 << 20));
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gi-render: %s\n", e.what());
+        return 1;
+    }
+}

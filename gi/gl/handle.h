@@ -1,0 +1,97 @@
+// Move-only RAII owners for GL object names, created with DSA (glCreate*).
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <utility>
+
+namespace gi::gl {
+
+template <void (*Delete)(GLuint)>
+class Handle {
+public:
+    Handle() = default;
+    explicit Handle(GLuint id) : mId(id) {}
+    ~Handle() { reset(); }
+    Handle(Handle&& o) noexcept : mId(std::exchange(o.mId, 0)) {}
+    Handle& operator=(Handle&& o) noexcept {
+        if (this != &o) {
+            reset();
+            mId = std::exchange(o.mId, 0);
+        }
+        return *this;
+    }
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+
+    GLuint id() const { return mId; }
+    explicit operator bool() const { return mId != 0; }
+    void reset() {
+        if (mId) Delete(mId);
+        mId = 0;
+    }
+
+private:
+    GLuint mId = 0;
+};
+
+namespace detail {
+inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+inline void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
+inline void deleteShader(GLuint id) { glDeleteShader(id); }
+inline void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
+inline void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
+}  // namespace detail
+
+using Buffer = Handle<detail::deleteBuffer>;
+using Framebuffer = Handle<detail::deleteFramebuffer>;
+using VertexArray = Handle<detail::deleteVertexArray>;
+using ProgramHandle = Handle<detail::deleteProgram>;
+using ShaderHandle = Handle<detail::deleteShader>;
+using Query = Handle<detail::deleteQuery>;
+using Sampler = Handle<detail::deleteSampler>;
+
+inline Buffer createBuffer(size_t bytes, const void* data, GLbitfield flags = 0) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, GLsizeiptr(bytes), data, flags);
+    return Buffer(id);
+}
+
+inline Framebuffer createFramebuffer() {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    return Framebuffer(id);
+}
+
+// Bytes per texel of the internal formats this project allocates (for memory reports).
+size_t bytesPerTexel(GLenum internalFormat);
+
+// A texture that remembers its shape and the bytes it holds.
+class Texture {
+public:
+    Texture() = default;
+    static Texture create2D(GLenum internalFormat, int width, int height, int levels = 1);
+    static Texture createCube(GLenum internalFormat, int size);
+    static Texture create3D(GLenum internalFormat, int width, int height, int depth, int levels = 1);
+
+    GLuint id() const { return mHandle.id(); }
+    explicit operator bool() const { return bool(mHandle); }
+    GLenum target() const { return mTarget; }
+    GLenum format() const { return mFormat; }
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    int depth() const { return mDepth; }
+    size_t bytes() const { return mBytes; }
+
+private:
+    Handle<detail::deleteTexture> mHandle;
+    GLenum mTarget = 0, mFormat = 0;
+    int mWidth = 0, mHeight = 0, mDepth = 0;
+    size_t mBytes = 0;
+};
+
+}  // namespace gi::gl

@@ -1,0 +1,27 @@
+// A headless OpenGL 4.5 core context through EGL surfaceless (Mesa llvmpipe works with no GPU
+// and no X server). The context is made current on construction.
+#pragma once
+
+#include <string>
+
+namespace gi {
+
+class EGLContextHeadless {
+public:
+    // Throws gi::Error naming the EGL call that failed.
+    explicit EGLContextHeadless(bool debug = true);
+    ~EGLContextHeadless();
+    EGLContextHeadless(const EGLContextHeadless&) = delete;
+    EGLContextHeadless& operator=(const EGLContextHeadless&) = delete;
+
+    std::string renderer() const;
+
+private:
+    void* mDisplay = nullptr;
+    void* mContext = nullptr;
+};
+
+// The GL_RENDERER and GL_VERSION strings of the current context.
+std::string glRendererString();
+
+}  // namespace gi

@@ -1,0 +1,202 @@
+#include "gi/preset/preset.h"
+
+#include "gi/scene/scene.h"
+#include "gi/util/paths.h"
+
+namespace gi {
+
+namespace {
+
+template <Settings S>
+std::string sectionPrefix() {
+    return S::kSection.empty() ? std::string() : std::string(S::kSection) + ".";
+}
+
+std::vector<std::string> topLevelKeys() {
+    std::vector<std::string> keys = fieldKeys<PresetHeader>("");
+    keys.insert(keys.end(), {"schemaVersion", "lights"});
+    Preset p;
+    p.forEachSection([&](auto& s) { keys.emplace_back(std::decay_t<decltype(s)>::kSection); });
+    return keys;
+}
+
+}  // namespace
+
+json presetToJson(const Preset& p) {
+    json j = toJson(p.header);
+    j["schemaVersion"] = Preset::kSchemaVersion;
+    Preset& mp = const_cast<Preset&>(p);
+    mp.forEachSection([&](auto& s) { j[std::string(std::decay_t<decltype(s)>::kSection)] = toJson(s); });
+    if (!p.lightsFromScene) {
+        json lights = json::array();
+        for (const auto& l : p.lights) lights.push_back(toJson(l));
+        j["lights"] = lights;
+    }
+    return j;
+}
+
+Preset presetFromJson(const json& j, const std::string& context) {
+    if (!j.is_object()) throw Error(context + ": a preset must be a JSON object");
+    auto version = j.find("schemaVersion");
+    if (version == j.end()) throw Error(context + ": key 'schemaVersion' is missing");
+    if (!version->is_number_integer())
+        throw Error(context + ": key 'schemaVersion': expected an integer, got " + version->type_name());
+    int v = version->get<int>();
+    if (v > Preset::kSchemaVersion)
+        throw Error(context + ": key 'schemaVersion': " + std::to_string(v) +
+                    " is newer than this build understands (" + std::to_string(Preset::kSchemaVersion) + ")");
+    if (v < 1) throw Error(context + ": key 'schemaVersion': " + std::to_string(v) + " is not a valid version");
+    // Version 1 is the first; migrations from older versions go here as the schema changes.
+
+    std::vector<std::string> keys = topLevelKeys();
+    json header = json::object();
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        bool known = false;
+        for (auto& k : keys) known |= (k == it.key());
+        if (!known)
+            throw Error(detail::where(context, it.key()) + ": unknown key (did you mean '" +
+                        detail::nearest(it.key(), keys) + "'?)");
+    }
+    for (auto& k : fieldKeys<PresetHeader>(""))
+        if (j.contains(k)) header[k] = j[k];
+
+    Preset p;
+    fromJson(p.header, header, context, "");
+    p.forEachSection([&](auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        auto it = j.find(std::string(S::kSection));
+        if (it != j.end()) fromJson(s, *it, context, sectionPrefix<S>());
+    });
+    if (auto it = j.find("lights"); it != j.end()) {
+        if (!it->is_array()) throw Error(detail::where(context, "lights") + ": expected an array of lights");
+        if (it->size() > 64) throw Error(detail::where(context, "lights") + ": more than 64 lights");
+        p.lightsFromScene = false;
+        for (size_t i = 0; i < it->size(); ++i) {
+            LightSettings l;
+            fromJson(l, (*it)[i], context, "lights." + std::to_string(i) + ".");
+            p.lights.push_back(l);
+        }
+    }
+    return p;
+}
+
+Preset loadPreset(const std::filesystem::path& path) {
+    std::string text = readTextFile(path);
+    json j = json::parse(text, nullptr, false);
+    if (j.is_discarded()) {
+        // Parse again with exceptions on to get the position of the first error.
+        try {
+            (void)json::parse(text);
+        } catch (const json::parse_error& e) {
+            throw Error(path.string() + ": invalid JSON at byte " + std::to_string(e.byte));
+        }
+        throw Error(path.string() + ": invalid JSON");
+    }
+    Preset p = presetFromJson(j, path.string());
+    p.folder = path.parent_path();
+    return p;
+}
+
+void savePreset(const Preset& p, const std::filesystem::path& path) {
+    writeFileAtomic(path, presetToJson(p).dump(2) + "\n");
+}
+
+void applySetting(Preset& p, const std::string& assignment) {
+    auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw Error("--set '" + assignment + "': expected key=value");
+    std::string key = assignment.substr(0, eq);
+    std::string value = assignment.substr(eq + 1);
+
+    if (setField(p.header, key, value, key)) return;
+    bool done = false;
+    p.forEachSection([&](auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        std::string prefix = sectionPrefix<S>();
+        if (!done && key.rfind(prefix, 0) == 0) done = setField(s, key.substr(prefix.size()), value, key);
+    });
+    if (done) return;
+    if (key.rfind("lights.", 0) == 0) {
+        std::string rest = key.substr(7);
+        auto dot = rest.find('.');
+        if (dot == std::string::npos) throw Error("--set: key '" + key + "': expected lights.N.key");
+        size_t index = 0;
+        try {
+            index = std::stoul(rest.substr(0, dot));
+        } catch (...) {
+            throw Error("--set: key '" + key + "': expected a light index after 'lights.'");
+        }
+        if (p.lightsFromScene)
+            throw Error("--set: key '" + key + "': this preset takes its lights from the scene; "
+                        "set them in the preset's \"lights\" list first");
+        if (index >= p.lights.size())
+            throw Error("--set: key '" + key + "': light " + std::to_string(index) + " does not exist (the preset has " +
+                        std::to_string(p.lights.size()) + ")");
+        if (setField(p.lights[index], rest.substr(dot + 1), value, key)) return;
+        throw Error("--set: key '" + key + "': unknown key (did you mean 'lights." + std::to_string(index) + "." +
+                    detail::nearest(rest.substr(dot + 1), fieldKeys<LightSettings>("")) + "'?)");
+    }
+    std::vector<std::string> all;
+    for (auto& s : listSettings()) all.push_back(s.key);
+    throw Error("--set: key '" + key + "': unknown key (did you mean '" + detail::nearest(key, all) + "'?)");
+}
+
+std::vector<SettingInfo> listSettings() {
+    std::vector<SettingInfo> out;
+    describe<PresetHeader>(out, "");
+    Preset p;
+    p.forEachSection([&](auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        describe<S>(out, sectionPrefix<S>());
+    });
+    describe<LightSettings>(out, "lights.N.");
+    return out;
+}
+
+json settingInfoToJson(const SettingInfo& s) {
+    json j = {{"key", s.key},        {"type", s.type}, {"description", s.description},
+              {"unit", s.unit},      {"cost", s.cost}, {"default", s.defaultValue}};
+    if (std::isfinite(s.min)) j["min"] = s.min;
+    if (std::isfinite(s.max)) j["max"] = s.max;
+    if (!s.choices.empty()) j["choices"] = s.choices;
+    return j;
+}
+
+Preset presetForInput(const std::filesystem::path& input, int sceneCamera) {
+    std::string ext = input.extension().string();
+    for (auto& c : ext) c = char(std::tolower(c));
+    if (ext == ".gltf" || ext == ".glb") {
+        Preset p;
+        p.header.scene = std::filesystem::absolute(input).string();
+        p.camera.sceneCamera = sceneCamera;
+        p.lightsFromScene = true;
+        return p;
+    }
+    if (ext != ".json") throw Error(input.string() + ": expected a preset (.json) or a glTF file (.gltf, .glb)");
+    Preset p = loadPreset(input);
+    if (sceneCamera >= 0) p.camera.sceneCamera = sceneCamera;
+    return p;
+}
+
+FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int height) {
+    FrameSettings fs;
+    fs.camera = p.camera;
+    if (p.camera.sceneCamera >= 0) {
+        if (p.camera.sceneCamera >= int(scene.cameras.size()))
+            throw Error("key 'camera.sceneCamera': camera " + std::to_string(p.camera.sceneCamera) + " does not exist (scene '" +
+                        scene.name + "' has " + std::to_string(scene.cameras.size()) + ")");
+        const CameraSettings& c = scene.cameras[p.camera.sceneCamera];
+        fs.camera.eye = c.eye;
+        fs.camera.target = c.target;
+        fs.camera.up = c.up;
+        fs.camera.fovY = c.fovY;
+    }
+    fs.lights = p.lightsFromScene ? scene.lights : p.lights;
+    fs.render = p.render;
+    fs.toneMap = p.toneMap;
+    fs.width = width;
+    fs.height = height;
+    return fs;
+}
+
+}  // namespace gi

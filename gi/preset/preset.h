@@ -1,0 +1,75 @@
+// A preset: schema version, scene, technique, camera, lights and every settings section.
+// Loading validates everything and names the offending key; saving is atomic.
+#pragma once
+
+#include "gi/preset/reflect.h"
+#include "gi/render/render_settings.h"
+#include "gi/scene/scene_settings.h"
+
+#include <filesystem>
+#include <vector>
+
+namespace gi {
+
+// The active GI technique. Later techniques add their names here and their settings sections.
+enum class Technique { None };
+template <>
+struct EnumNames<Technique> {
+    static constexpr std::array<std::pair<Technique, const char*>, 1> values{{{Technique::None, "none"}}};
+};
+
+// The top-level keys of a preset.
+struct PresetHeader {
+    static constexpr std::string_view kSection = "";
+    std::string scene = "cornell";           // built-in scene name or glTF path (search path applies)
+    Technique technique = Technique::None;   // which technique fills the indirect term
+
+    template <class V>
+    void visit(V&& v) {
+        v(scene, {"scene", "Built-in scene (cornell, basic) or a glTF file path", "", 0, 0, Cost::ReloadScene});
+        v(technique, {"technique", "Technique that computes indirect light", "", 0, 0, Cost::Reallocate});
+    }
+};
+
+struct Preset {
+    static constexpr int kSchemaVersion = 1;
+    PresetHeader header;
+    CameraSettings camera;
+    std::vector<LightSettings> lights;  // used when lightsFromScene is false
+    bool lightsFromScene = true;        // no "lights" key: take the scene's own lights
+    RenderSettings render;
+    ToneMapSettings toneMap;
+    std::filesystem::path folder;       // folder of the file it came from (asset search path)
+
+    // Every fixed settings section, for code that treats them alike.
+    template <class F>
+    void forEachSection(F&& f) {
+        f(camera);
+        f(render);
+        f(toneMap);
+    }
+};
+
+json presetToJson(const Preset& p);
+// `context` names the source in error messages (usually the file path).
+Preset presetFromJson(const json& j, const std::string& context);
+Preset loadPreset(const std::filesystem::path& path);
+void savePreset(const Preset& p, const std::filesystem::path& path);
+
+// Applies "key=value" (keys as in --list-settings; lights as lights.N.key). Throws gi::Error.
+void applySetting(Preset& p, const std::string& assignment);
+
+// Every settings key with type, range, default and description.
+std::vector<SettingInfo> listSettings();
+json settingInfoToJson(const SettingInfo& s);
+
+struct Scene;
+
+// A preset for any runner input: a preset file as it is, or a glTF file rendered with its own
+// cameras (`sceneCamera`, -1 to frame the scene) and lights. Throws gi::Error.
+Preset presetForInput(const std::filesystem::path& input, int sceneCamera);
+// Resolves the preset against a loaded scene: the scene's lights when the preset has none, the
+// file's camera when camera.sceneCamera is set. Throws gi::Error for a camera index past the end.
+FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int height);
+
+}  // namespace gi

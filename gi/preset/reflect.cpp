@@ -1,0 +1,63 @@
+#include "gi/preset/reflect.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace gi {
+
+const char* costName(Cost c) {
+    switch (c) {
+        case Cost::Uniform: return "uniform";
+        case Cost::Reallocate: return "reallocate";
+        case Cost::Recompile: return "recompile";
+        case Cost::ReloadScene: return "reload scene";
+    }
+    return "mixed";
+}
+
+namespace detail {
+
+size_t editDistance(std::string_view a, std::string_view b) {
+    std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        cur[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (same ? 0 : 1)});
+        }
+        std::swap(prev, cur);
+    }
+    return prev[b.size()];
+}
+
+std::string nearest(std::string_view key, const std::vector<std::string>& candidates) {
+    std::string best;
+    size_t bestDistance = SIZE_MAX;
+    for (const auto& c : candidates) {
+        size_t d = editDistance(key, c);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = c;
+        }
+    }
+    return best;
+}
+
+std::string formatNumber(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+std::string rangeText(const FieldMeta& m) {
+    auto end = [](double v) { return std::isinf(v) ? std::string(v < 0 ? "-inf" : "inf") : formatNumber(v); };
+    return "[" + end(m.min) + ", " + end(m.max) + "]";
+}
+
+std::string where(const std::string& context, const std::string& key) {
+    return context + ": key '" + key + "'";
+}
+
+}  // namespace detail
+}  // namespace gi

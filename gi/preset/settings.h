@@ -1,0 +1,59 @@
+// The settings reflection table: every settings struct lists its fields once, in visit(), with
+// the key, description, unit, range and what a change costs. JSON, validation, `--set`,
+// `--list-settings`, the ImGui panels, diffing and the tests all walk that one list (reflect.h).
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace gi {
+
+// What the host must do when a field changes. Values are bits so a diff can OR them.
+enum class Cost : uint8_t {
+    Uniform = 1,     // upload a uniform next frame
+    Reallocate = 2,  // resize or recreate GPU resources
+    Recompile = 4,   // rebuild a shader variant
+    ReloadScene = 8  // reload scene files and rebuild the GPU scene
+};
+inline Cost operator|(Cost a, Cost b) { return Cost(uint8_t(a) | uint8_t(b)); }
+inline bool any(Cost c, Cost bit) { return (uint8_t(c) & uint8_t(bit)) != 0; }
+const char* costName(Cost c);
+
+inline constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+
+// Metadata of one field, given once in the struct's visit().
+struct FieldMeta {
+    const char* key;          // JSON key, equal to the C++ field name
+    const char* description;  // one sentence for tooltips and --list-settings
+    const char* unit = "";    // "deg", "px", "EV", "" for unitless
+    double min = -kNoLimit;   // inclusive range for numbers (each component of a vec3)
+    double max = kNoLimit;
+    Cost cost = Cost::Uniform;
+    double step = 0.0;        // UI drag speed; 0 picks one from the range
+};
+
+// Enums reflect through a name table: specialise EnumNames<E> with a `values` array of
+// {value, "name"} pairs. JSON and --set use the names.
+template <class E>
+struct EnumNames;
+
+template <class E>
+concept ReflectedEnum = std::is_enum_v<E> && requires { EnumNames<E>::values; };
+
+template <ReflectedEnum E>
+const char* enumName(E value) {
+    for (const auto& [v, name] : EnumNames<E>::values)
+        if (v == value) return name;
+    return "?";
+}
+
+template <class S>
+concept Settings = requires(S s) { S::kSection; };
+
+}  // namespace gi

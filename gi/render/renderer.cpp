@@ -1,0 +1,524 @@
+#include "gi/render/renderer.h"
+
+#include "common/shared.h"
+#include "gi/util/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace gi {
+
+using namespace shared;
+
+glm::mat4 viewMatrix(const CameraSettings& c) {
+    glm::vec3 f = c.target - c.eye;
+    if (glm::length(f) < 1e-8f) f = glm::vec3(0, 0, -1);
+    glm::vec3 up = c.up;
+    if (glm::length(glm::cross(glm::normalize(f), up)) < 1e-4f) up = std::abs(f.y) > 0.9f * glm::length(f) ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    return glm::lookAt(c.eye, c.eye + f, up);
+}
+
+glm::mat4 projectionMatrix(const CameraSettings& c, float aspect) {
+    float far = std::max(c.far, c.near * 1.001f);
+    return glm::perspective(glm::radians(c.fovY), aspect, c.near, far);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.materials), mBounds(scene.bounds) {
+    mVertices = gl::createBuffer(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
+    mIndices = gl::createBuffer(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
+    mBytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    mVAO = gl::VertexArray(vao);
+    glVertexArrayVertexBuffer(vao, 0, mVertices.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, mIndices.id());
+    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv)};
+    const GLint sizes[3] = {3, 3, 2};
+    for (GLuint a = 0; a < 3; ++a) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
+        glVertexArrayAttribBinding(vao, a, 0);
+    }
+    for (const Texture& t : scene.textures) {
+        int levels = 1 + int(std::floor(std::log2(std::max(t.width, t.height))));
+        gl::Texture tex = gl::Texture::create2D(GL_SRGB8_ALPHA8, t.width, t.height, levels);
+        glTextureSubImage2D(tex.id(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+        glGenerateTextureMipmap(tex.id());
+        mBytes += tex.bytes();
+        mTextures.push_back(std::move(tex));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+gl::Sampler makeSampler(GLenum minFilter, GLenum magFilter, GLenum wrap, bool compare = false) {
+    GLuint s = 0;
+    glCreateSamplers(1, &s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, minFilter);
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, magFilter);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, wrap);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, wrap);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_R, wrap);
+    if (compare) {
+        glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(s, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+    return gl::Sampler(s);
+}
+
+gl::Program fullscreenProgram(const char* name, const char* frag) {
+    return gl::Program(name, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, frag}});
+}
+
+void checkFramebuffer(GLuint fbo, const char* what) {
+    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    GI_ASSERT(status == GL_FRAMEBUFFER_COMPLETE, what);
+}
+
+constexpr size_t kGBufferBytesPerPixel = 4 + 8 + 4 + 8 + 4;  // albedo, normal, material, emissive, depth
+constexpr size_t kTargetBytesPerPixel = 8 + 8 + 4;            // indirect, HDR, LDR
+
+}  // namespace
+
+Renderer::Renderer()
+    : mGBufferProg("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}),
+      mShadowProg("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}}),
+      mCompositeProg(fullscreenProgram("composite", "render/composite.frag")),
+      mLightProg(fullscreenProgram("light", "render/light.frag")),
+      mToneProg(fullscreenProgram("tonemap", "render/tonemap.frag")),
+      mViewProg(fullscreenProgram("view", "render/view.frag")) {
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    mEmptyVAO = gl::VertexArray(vao);
+    mLinearSampler = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    mPointSampler = makeSampler(GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
+    mShadowSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, true);
+    mMaterialSampler = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+    glSamplerParameterf(mMaterialSampler.id(), GL_TEXTURE_MAX_ANISOTROPY, 4.0f);
+    mWhite = gl::Texture::create2D(GL_RGBA8, 1, 1);
+    const uint8_t white[4] = {255, 255, 255, 255};
+    glTextureSubImage2D(mWhite.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::setScene(const Scene& scene) { mScene = std::make_unique<GPUScene>(scene); }
+
+size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
+    size_t pixels = size_t(std::max(fs.width, 0)) * size_t(std::max(fs.height, 0));
+    size_t bytes = pixels * (kGBufferBytesPerPixel + kTargetBytesPerPixel);
+    size_t face = size_t(fs.render.shadowMapSize) * size_t(fs.render.shadowMapSize) * 4;
+    for (const auto& l : fs.lights)
+        if (l.castShadows) bytes += face * (l.type == LightType::Point ? 6 : 1);
+    return bytes;
+}
+
+void Renderer::checkBudget(const FrameSettings& fs, size_t sceneBytes) {
+    if (fs.width < 1 || fs.height < 1 || fs.width > 16384 || fs.height > 16384)
+        throw Error("image size " + std::to_string(fs.width) + "x" + std::to_string(fs.height) +
+                    " is outside 1..16384 per side");
+    double mb = double(estimateFrameBytes(fs) + sceneBytes) / (1024.0 * 1024.0);
+    if (mb > fs.render.memoryBudgetMB) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf,
+                      "key 'render.memoryBudgetMB': these settings need %.0f MiB of GPU memory (image %dx%d, "
+                      "shadow maps %d^2 for %zu lights, scene %.0f MiB), over the budget of %.0f MiB",
+                      mb, fs.width, fs.height, fs.render.shadowMapSize, fs.lights.size(),
+                      double(sceneBytes) / (1024.0 * 1024.0), double(fs.render.memoryBudgetMB));
+        throw Error(buf);
+    }
+}
+
+void Renderer::resize(int width, int height) {
+    if (width == mWidth && height == mHeight) return;
+    mWidth = width;
+    mHeight = height;
+    mAlbedo = gl::Texture::create2D(GL_RGBA8, width, height);
+    mNormal = gl::Texture::create2D(GL_RGBA16F, width, height);
+    mMaterial = gl::Texture::create2D(GL_RGBA8, width, height);
+    mEmissive = gl::Texture::create2D(GL_RGBA16F, width, height);
+    mDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+    mIndirect = gl::Texture::create2D(GL_RGBA16F, width, height);
+    mHDR = gl::Texture::create2D(GL_RGBA16F, width, height);
+    mLDR = gl::Texture::create2D(GL_RGBA8, width, height);
+
+    mGBufferFBO = gl::createFramebuffer();
+    glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT0, mAlbedo.id(), 0);
+    glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT1, mNormal.id(), 0);
+    glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT2, mMaterial.id(), 0);
+    glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT3, mEmissive.id(), 0);
+    glNamedFramebufferTexture(mGBufferFBO.id(), GL_DEPTH_ATTACHMENT, mDepth.id(), 0);
+    const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(mGBufferFBO.id(), 4, bufs);
+    checkFramebuffer(mGBufferFBO.id(), "G-buffer framebuffer incomplete");
+
+    mHDRFBO = gl::createFramebuffer();
+    glNamedFramebufferTexture(mHDRFBO.id(), GL_COLOR_ATTACHMENT0, mHDR.id(), 0);
+    checkFramebuffer(mHDRFBO.id(), "HDR framebuffer incomplete");
+    mLDRFBO = gl::createFramebuffer();
+    glNamedFramebufferTexture(mLDRFBO.id(), GL_COLOR_ATTACHMENT0, mLDR.id(), 0);
+    checkFramebuffer(mLDRFBO.id(), "LDR framebuffer incomplete");
+}
+
+void Renderer::prepareShadows(const FrameSettings& fs) {
+    std::vector<LightType> types;
+    std::vector<bool> cast;
+    for (const auto& l : fs.lights) {
+        types.push_back(l.type);
+        cast.push_back(l.castShadows);
+    }
+    if (types == mShadowTypes && cast == mShadowCast && fs.render.shadowMapSize == mShadowSize) return;
+    mShadowTypes = types;
+    mShadowCast = cast;
+    mShadowSize = fs.render.shadowMapSize;
+    mShadows.clear();
+    for (const auto& l : fs.lights) {
+        ShadowMap sm;
+        sm.type = l.type;
+        if (l.castShadows) {
+            if (l.type == LightType::Point) {
+                sm.depth = gl::Texture::createCube(GL_DEPTH_COMPONENT32F, mShadowSize);
+                for (int face = 0; face < 6; ++face) {
+                    gl::Framebuffer fbo = gl::createFramebuffer();
+                    glNamedFramebufferTextureLayer(fbo.id(), GL_DEPTH_ATTACHMENT, sm.depth.id(), 0, face);
+                    glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
+                    checkFramebuffer(fbo.id(), "cube shadow framebuffer incomplete");
+                    sm.fbos.push_back(std::move(fbo));
+                }
+            } else {
+                sm.depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, mShadowSize, mShadowSize);
+                gl::Framebuffer fbo = gl::createFramebuffer();
+                glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, sm.depth.id(), 0);
+                glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
+                checkFramebuffer(fbo.id(), "shadow framebuffer incomplete");
+                sm.fbos.push_back(std::move(fbo));
+            }
+        }
+        mShadows.push_back(std::move(sm));
+    }
+}
+
+void Renderer::render(const FrameSettings& fs) {
+    GI_ASSERT(mScene, "Renderer::render before setScene");
+    checkBudget(fs, mScene->memoryBytes());
+    resize(fs.width, fs.height);
+    prepareShadows(fs);
+    mCamera = fs.camera;
+
+    glm::mat4 viewProj = projectionMatrix(fs.camera, float(fs.width) / float(fs.height)) * viewMatrix(fs.camera);
+
+    mTimer.beginFrame();
+    renderShadows(fs);
+    renderGBuffer(viewProj);
+    renderIndirect(fs);
+    renderLighting(fs, viewProj);
+    renderToneMap(fs);
+    mTimer.endFrame();
+    mTimer.resolve(false);
+}
+
+void Renderer::renderShadows(const FrameSettings& fs) {
+    auto pass = mTimer.scope("shadows");
+    const Bounds& b = mScene->bounds();
+    glm::vec3 center = b.center();
+    float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, mShadowSize, mShadowSize);
+    mShadowProg.use();
+    glBindSampler(kUnitBaseColor, mMaterialSampler.id());
+
+    auto drawScene = [&]() {
+        mScene->draw([&](const Material& m, int) {
+            bool mask = m.alphaMode == AlphaMode::Mask;
+            mShadowProg.set("uAlphaCutoff", mask ? m.alphaCutoff : -1.0f);
+            mShadowProg.set("uBaseAlpha", m.baseColor.a);
+            mShadowProg.set("uHasTexture", mask && m.baseColorTexture >= 0 ? 1 : 0);
+            glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
+        });
+    };
+
+    for (size_t i = 0; i < fs.lights.size(); ++i) {
+        const LightSettings& l = fs.lights[i];
+        ShadowMap& sm = mShadows[i];
+        if (!l.castShadows) continue;
+        glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+        glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+        if (l.type == LightType::Directional) {
+            glm::mat4 view = glm::lookAt(center - dir * radius * 2.0f, center, up);
+            glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
+            sm.viewProj = proj * view;
+            sm.texel = 2.0f * radius / float(mShadowSize);
+        } else if (l.type == LightType::Spot) {
+            float fov = std::min(2.0f * l.outerConeDeg + 2.0f, 170.0f);
+            float dist = glm::length(l.position - center) + radius;
+            sm.far = l.range > 0.0f ? std::min(l.range, dist) : dist;
+            glm::mat4 view = glm::lookAt(l.position, l.position + dir, up);
+            glm::mat4 proj = glm::perspective(glm::radians(fov), 1.0f, sm.far * 1e-3f, sm.far);
+            sm.viewProj = proj * view;
+            sm.texel = 2.0f * std::tan(glm::radians(fov) * 0.5f) / float(mShadowSize);
+        } else {
+            sm.far = glm::length(l.position - center) + radius;
+            if (l.range > 0.0f) sm.far = std::min(sm.far, l.range);
+            sm.texel = 2.0f / float(mShadowSize);
+        }
+        mShadowProg.set("uLinearDepth", l.type == LightType::Point ? 1 : 0);
+        mShadowProg.set("uLightPos", l.position);
+        mShadowProg.set("uFar", sm.far);
+        if (l.type == LightType::Point) {
+            // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
+            const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+            const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+            glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, sm.far * 1e-3f, sm.far);
+            for (int face = 0; face < 6; ++face) {
+                glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
+                glClear(GL_DEPTH_BUFFER_BIT);
+                mShadowProg.set("uLightViewProj", proj * glm::lookAt(l.position, l.position + dirs[face], ups[face]));
+                drawScene();
+            }
+        } else {
+            glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[0].id());
+            glClear(GL_DEPTH_BUFFER_BIT);
+            mShadowProg.set("uLightViewProj", sm.viewProj);
+            drawScene();
+        }
+    }
+    glBindSampler(kUnitBaseColor, 0);
+}
+
+void Renderer::renderGBuffer(const glm::mat4& viewProj) {
+    auto pass = mTimer.scope("gbuffer");
+    glBindFramebuffer(GL_FRAMEBUFFER, mGBufferFBO.id());
+    glViewport(0, 0, mWidth, mHeight);
+    const float zero[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(mGBufferFBO.id(), GL_COLOR, i, zero);
+    const float one = 1.0f;
+    glClearNamedFramebufferfv(mGBufferFBO.id(), GL_DEPTH, 0, &one);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    mGBufferProg.use();
+    mGBufferProg.set("uViewProj", viewProj);
+    glBindSampler(kUnitBaseColor, mMaterialSampler.id());
+    mScene->draw([&](const Material& m, int) {
+        mGBufferProg.set("uBaseColor", m.baseColor);
+        mGBufferProg.set("uHasTexture", m.baseColorTexture >= 0 ? 1 : 0);
+        mGBufferProg.set("uAlphaCutoff", m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
+        mGBufferProg.set("uRoughness", m.roughness);
+        mGBufferProg.set("uMetallic", m.metallic);
+        mGBufferProg.set("uEmissive", m.emissive);
+        glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
+    });
+    glBindSampler(kUnitBaseColor, 0);
+}
+
+void Renderer::renderIndirect(const FrameSettings& fs) {
+    auto pass = mTimer.scope("indirect");
+    // Technique none: the indirect term is the constant ambient radiance.
+    const glm::vec4 ambient(fs.render.ambient, 1.0f);
+    glClearTexImage(mIndirect.id(), 0, GL_RGBA, GL_FLOAT, &ambient[0]);
+}
+
+void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj) {
+    auto pass = mTimer.scope("lighting");
+    glBindFramebuffer(GL_FRAMEBUFFER, mHDRFBO.id());
+    glViewport(0, 0, mWidth, mHeight);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(mEmptyVAO.id());
+
+    const GLuint gbuffer[5] = {mAlbedo.id(), mNormal.id(), mMaterial.id(), mEmissive.id(), mDepth.id()};
+    for (int i = 0; i < 5; ++i) {
+        glBindTextureUnit(kUnitAlbedo + i, gbuffer[i]);
+        glBindSampler(kUnitAlbedo + i, mPointSampler.id());
+    }
+    glBindTextureUnit(kUnitIndirect, mIndirect.id());
+    glBindSampler(kUnitIndirect, mPointSampler.id());
+    glm::mat4 inv = glm::inverse(viewProj);
+
+    glDisable(GL_BLEND);
+    mCompositeProg.use();
+    mCompositeProg.set("uInvViewProj", inv);
+    mCompositeProg.set("uCameraPos", fs.camera.eye);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    mLightProg.use();
+    mLightProg.set("uInvViewProj", inv);
+    mLightProg.set("uCameraPos", fs.camera.eye);
+    mLightProg.set("uSpecular", fs.render.specular ? 1 : 0);
+    mLightProg.set("uPCFRadius", fs.render.pcfRadius);
+    mLightProg.set("uShadowBias", fs.render.shadowBias);
+    mLightProg.set("uShadowSize", float(mShadowSize));
+    glBindSampler(kUnitShadow2D, mShadowSampler.id());
+    glBindSampler(kUnitShadowCube, mShadowSampler.id());
+    // Units of the other shadow type must still hold a texture of the sampler's type.
+    glBindTextureUnit(kUnitShadow2D, 0);
+    glBindTextureUnit(kUnitShadowCube, 0);
+    for (size_t i = 0; i < fs.lights.size(); ++i) {
+        const LightSettings& l = fs.lights[i];
+        const ShadowMap& sm = mShadows[i];
+        mLightProg.set("uLightType", int(l.type));
+        mLightProg.set("uLightColor", l.color * l.intensity);
+        mLightProg.set("uLightPos", l.position);
+        mLightProg.set("uLightDir", glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0));
+        mLightProg.set("uLightRange", l.range);
+        mLightProg.set("uCosInner", std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg))));
+        mLightProg.set("uCosOuter", std::cos(glm::radians(l.outerConeDeg)));
+        mLightProg.set("uShadows", l.castShadows ? 1 : 0);
+        if (l.castShadows) {
+            mLightProg.set("uShadowViewProj", sm.viewProj);
+            mLightProg.set("uShadowTexel", sm.texel);
+            mLightProg.set("uShadowFar", sm.far);
+            glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
+        }
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, 0);
+    }
+    glDisable(GL_BLEND);
+    for (int u = kUnitAlbedo; u <= kUnitShadowCube; ++u) glBindSampler(u, 0);
+}
+
+void Renderer::renderToneMap(const FrameSettings& fs) {
+    auto pass = mTimer.scope("tonemap");
+    glBindFramebuffer(GL_FRAMEBUFFER, mLDRFBO.id());
+    glViewport(0, 0, mWidth, mHeight);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glBindVertexArray(mEmptyVAO.id());
+    mToneProg.use();
+    mToneProg.set("uExposureScale", std::exp2(fs.toneMap.exposure));
+    mToneProg.set("uToneOp", int(fs.toneMap.op));
+    glBindTextureUnit(kUnitSource, mHDR.id());
+    glBindSampler(kUnitSource, mPointSampler.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindSampler(kUnitSource, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+bool Renderer::reloadShaders(std::string& log) {
+    bool ok = true;
+    log.clear();
+    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
+        if (!p->reload()) {
+            ok = false;
+            log += p->log() + "\n";
+        }
+    }
+    return ok;
+}
+
+std::vector<DebugView> Renderer::debugViews() const {
+    std::vector<DebugView> v;
+    if (!mWidth) return v;
+    float range = mScene ? glm::length(mScene->bounds().extent()) + glm::length(mCamera.eye - mScene->bounds().center()) : mCamera.far;
+    auto add = [&](const char* name, const gl::Texture& t, int mode) {
+        v.push_back({name, t.id(), t.target(), mode, t.width(), t.height(), mCamera.near, mCamera.far, range});
+    };
+    add("final", mLDR, kViewDisplay);
+    add("hdr", mHDR, kViewColor);
+    add("albedo", mAlbedo, kViewColor);
+    add("normal", mNormal, kViewNormal);
+    add("depth", mDepth, kViewLinearDepth);
+    add("roughnessMetallic", mMaterial, kViewDisplay);
+    add("emissive", mEmissive, kViewColor);
+    add("indirect", mIndirect, kViewColor);
+    for (size_t i = 0; i < mShadows.size(); ++i) {
+        if (!mShadows[i].depth) continue;
+        std::string name = "shadow" + std::to_string(i);
+        bool cube = mShadows[i].type == LightType::Point;
+        // Spot maps hold perspective depth: linearise it so the picture shows shapes, not white.
+        const ShadowMap& sm = mShadows[i];
+        int mode = cube ? kViewCubeCross : sm.type == LightType::Spot ? kViewLinearDepth : kViewRawDepth;
+        v.push_back({name, sm.depth.id(), sm.depth.target(), mode, cube ? mShadowSize * 4 / 3 : mShadowSize, mShadowSize,
+                     sm.far * 1e-3f, sm.far, sm.far});
+    }
+    return v;
+}
+
+std::vector<PassStats> Renderer::passStats() const {
+    size_t shadowBytes = 0;
+    for (auto& s : mShadows) shadowBytes += s.depth.bytes();
+    size_t gbuffer = mAlbedo.bytes() + mNormal.bytes() + mMaterial.bytes() + mEmissive.bytes() + mDepth.bytes();
+    std::vector<PassStats> out;
+    for (const auto& r : mTimer.results()) {
+        size_t bytes = 0;
+        if (r.name == "shadows") bytes = shadowBytes;
+        else if (r.name == "gbuffer") bytes = gbuffer;
+        else if (r.name == "indirect") bytes = mIndirect.bytes();
+        else if (r.name == "lighting") bytes = mHDR.bytes();
+        else if (r.name == "tonemap") bytes = mLDR.bytes();
+        out.push_back({r.name, r.gpuMs, bytes});
+    }
+    return out;
+}
+
+size_t Renderer::memoryBytes() const {
+    size_t total = mScene ? mScene->memoryBytes() : 0;
+    for (auto& s : mShadows) total += s.depth.bytes();
+    for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mHDR, &mLDR})
+        total += t->bytes();
+    return total;
+}
+
+std::vector<uint8_t> Renderer::readLDR() const {
+    std::vector<uint8_t> px(size_t(mWidth) * mHeight * 4);
+    glGetTextureImage(mLDR.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
+    return px;
+}
+
+std::vector<float> Renderer::readHDR() const {
+    std::vector<float> px(size_t(mWidth) * mHeight * 4);
+    glGetTextureImage(mHDR.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(px.size() * sizeof(float)), px.data());
+    return px;
+}
+
+void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glBindVertexArray(mEmptyVAO.id());
+    mViewProg.use();
+    mViewProg.set("uMode", view.mode);
+    mViewProg.set("uChannelMask", p.channelMask);
+    mViewProg.set("uExposureScale", std::exp2(p.exposure));
+    mViewProg.set("uNear", view.near);
+    mViewProg.set("uFar", view.far);
+    mViewProg.set("uRange", view.range);
+    mViewProg.set("uZoom", std::max(p.zoom, 1e-3f));
+    mViewProg.set("uPan", p.pan);
+    mViewProg.set("uLevel", p.level);
+    bool cube = view.target == GL_TEXTURE_CUBE_MAP;
+    glBindTextureUnit(cube ? kUnitSourceCube : kUnitSource, view.texture);
+    glBindSampler(cube ? kUnitSourceCube : kUnitSource, mPointSampler.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTextureUnit(cube ? kUnitSourceCube : kUnitSource, 0);
+    glBindSampler(cube ? kUnitSourceCube : kUnitSource, 0);
+}
+
+std::vector<uint8_t> Renderer::renderViewImage(const DebugView& view, int width, int height) const {
+    gl::Texture target = gl::Texture::create2D(GL_RGBA8, width, height);
+    gl::Framebuffer fbo = gl::createFramebuffer();
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    glViewport(0, 0, width, height);
+    drawView(view, ViewParams{});
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    std::vector<uint8_t> px(size_t(width) * height * 4);
+    glGetTextureImage(target.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
+    return px;
+}
+
+}  // namespace gi

@@ -1,0 +1,151 @@
+// The frame pipeline: shadow maps, G-buffer, indirect input, lighting (emission + indirect +
+// direct light per light), tone mapping. Every pass is a named debug group timed with GPU
+// timestamps and reports the memory it holds.
+//
+// Passes in order:
+//   shadows   one depth map per shadow-casting light (2D for directional and spot, cube for point)
+//   gbuffer   albedo RGBA8, normal RGBA16F, roughness/metallic RGBA8, emissive RGBA16F, depth 32F
+//   indirect  the technique's indirect irradiance / pi (RGBA16F); technique none fills the
+//             constant ambient radiance
+//   lighting  emission + albedo * indirect, then each light added with its shadow (HDR RGBA16F)
+//   tonemap   exposure, tone curve, sRGB into RGBA8
+#pragma once
+
+#include "gi/gl/handle.h"
+#include "gi/gl/shader.h"
+#include "gi/gl/timer.h"
+#include "gi/render/render_settings.h"
+#include "gi/scene/scene.h"
+
+#include <memory>
+#include <span>
+
+namespace gi {
+
+// A texture the previewers can show, with the mode that displays it sensibly.
+struct DebugView {
+    std::string name;
+    GLuint texture = 0;
+    GLenum target = GL_TEXTURE_2D;
+    int mode = 0;        // shared::kView*
+    int width = 0, height = 0;
+    float near = 0.0f, far = 1.0f, range = 1.0f;  // for depth linearisation
+};
+
+struct PassStats {
+    std::string name;
+    double gpuMs = 0.0;
+    size_t memoryBytes = 0;
+};
+
+// GPU copy of a Scene.
+class GPUScene {
+public:
+    explicit GPUScene(const Scene& scene);
+    // Issues the scene's draws. `bindMaterial` sets per-material uniforms and textures.
+    template <class F>
+    void draw(F&& bindMaterial) const {
+        glBindVertexArray(mVAO.id());
+        for (const Draw& d : mDraws) {
+            bindMaterial(mMaterials[d.material], d.material);
+            glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4));
+        }
+    }
+    GLuint texture(int index) const { return index >= 0 ? mTextures[index].id() : 0; }
+    size_t memoryBytes() const { return mBytes; }
+    const Bounds& bounds() const { return mBounds; }
+
+private:
+    gl::Buffer mVertices, mIndices;
+    gl::VertexArray mVAO;
+    std::vector<gl::Texture> mTextures;
+    std::vector<Draw> mDraws;
+    std::vector<Material> mMaterials;
+    Bounds mBounds;
+    size_t mBytes = 0;
+};
+
+class Renderer {
+public:
+    Renderer();  // compiles the programs; throws gi::Error on a shader error
+    ~Renderer();
+
+    void setScene(const Scene& scene);
+    bool hasScene() const { return bool(mScene); }
+
+    // Bytes the frame resources for these settings will hold (G-buffer, targets, shadow maps).
+    static size_t estimateFrameBytes(const FrameSettings& fs);
+    // Throws gi::Error when the settings plus the scene would exceed render.memoryBudgetMB.
+    static void checkBudget(const FrameSettings& fs, size_t sceneBytes);
+
+    void render(const FrameSettings& fs);
+
+    // Rebuilds every program from disk; a failure keeps the old programs and returns the log.
+    bool reloadShaders(std::string& log);
+
+    GLuint outputTexture() const { return mLDR.id(); }
+    GLuint hdrTexture() const { return mHDR.id(); }
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    std::vector<DebugView> debugViews() const;
+    // Per-pass GPU ms (newest finished frame) and memory held.
+    std::vector<PassStats> passStats() const;
+    size_t memoryBytes() const;
+    gl::GpuTimer& timer() { return mTimer; }
+
+    std::vector<uint8_t> readLDR() const;  // RGBA8, bottom row first
+    std::vector<float> readHDR() const;    // RGBA32F, bottom row first
+
+    // Draws a debug view into the current framebuffer's viewport.
+    struct ViewParams {
+        glm::vec4 channelMask{1, 1, 1, 0};
+        float exposure = 0.0f;  // EV
+        float zoom = 1.0f;
+        glm::vec2 pan{0.0f};
+        float level = 0.0f;
+    };
+    void drawView(const DebugView& view, const ViewParams& params) const;
+    // Renders a view into a new RGBA8 image of the given size (bottom row first).
+    std::vector<uint8_t> renderViewImage(const DebugView& view, int width, int height) const;
+
+private:
+    struct ShadowMap {
+        gl::Texture depth;
+        std::vector<gl::Framebuffer> fbos;  // 1, or 6 for cube faces
+        glm::mat4 viewProj{1.0f};           // 2D maps
+        float texel = 0.0f, far = 1.0f;
+        LightType type = LightType::Directional;
+    };
+
+    std::unique_ptr<GPUScene> mScene;
+    gl::Program mGBufferProg, mShadowProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
+    gl::VertexArray mEmptyVAO;
+    gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler;
+    gl::Texture mWhite;
+
+    int mWidth = 0, mHeight = 0;
+    gl::Texture mAlbedo, mNormal, mMaterial, mEmissive, mDepth, mIndirect, mHDR, mLDR;
+    gl::Framebuffer mGBufferFBO, mHDRFBO, mLDRFBO;
+    std::vector<ShadowMap> mShadows;  // one per light; empty depth when the light casts none
+    int mShadowSize = 0;
+    std::vector<LightType> mShadowTypes;
+    std::vector<bool> mShadowCast;
+    CameraSettings mCamera;
+
+    gl::GpuTimer mTimer;
+
+    void resize(int width, int height);
+    void prepareShadows(const FrameSettings& fs);
+    void renderShadows(const FrameSettings& fs);
+    void renderGBuffer(const glm::mat4& viewProj);
+    void renderIndirect(const FrameSettings& fs);
+    void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj);
+    void renderToneMap(const FrameSettings& fs);
+};
+
+// Camera matrices from settings and the aspect ratio.
+glm::mat4 viewMatrix(const CameraSettings& c);
+glm::mat4 projectionMatrix(const CameraSettings& c, float aspect);
+
+}  // namespace gi

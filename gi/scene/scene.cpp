@@ -1,0 +1,221 @@
+#include "gi/scene/scene.h"
+
+#include "gi/util/error.h"
+#include "gi/util/paths.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi {
+
+void Scene::finalize() {
+    std::stable_sort(draws.begin(), draws.end(), [](const Draw& a, const Draw& b) { return a.material < b.material; });
+    // Reorder indices so each material's triangles are contiguous, then merge draws.
+    std::vector<uint32_t> sorted;
+    sorted.reserve(indices.size());
+    std::vector<Draw> merged;
+    for (const Draw& d : draws) {
+        uint32_t first = uint32_t(sorted.size());
+        sorted.insert(sorted.end(), indices.begin() + d.firstIndex, indices.begin() + d.firstIndex + d.indexCount);
+        if (!merged.empty() && merged.back().material == d.material) merged.back().indexCount += d.indexCount;
+        else merged.push_back({first, d.indexCount, d.material});
+    }
+    indices = std::move(sorted);
+    draws = std::move(merged);
+    bounds = Bounds();
+    for (uint32_t i : indices) bounds.grow(vertices[i].position);
+}
+
+namespace {
+
+// Builds meshes for the procedural scenes.
+class MeshBuilder {
+public:
+    explicit MeshBuilder(Scene& s) : mScene(s) {}
+
+    int material(const std::string& name, glm::vec3 color, float roughness = 0.8f, int texture = -1) {
+        Material m;
+        m.name = name;
+        m.baseColor = glm::vec4(color, 1.0f);
+        m.roughness = roughness;
+        m.baseColorTexture = texture;
+        mScene.materials.push_back(m);
+        return int(mScene.materials.size()) - 1;
+    }
+
+    // A quad with corners p0, p0+u, p0+u+v, p0+v; the normal is normalize(cross(u, v)).
+    void quad(int mat, glm::vec3 p0, glm::vec3 u, glm::vec3 v, glm::vec2 uvScale = glm::vec2(1.0f)) {
+        glm::vec3 n = glm::normalize(glm::cross(u, v));
+        uint32_t base = uint32_t(mScene.vertices.size());
+        mScene.vertices.push_back({p0, n, {0, 0}});
+        mScene.vertices.push_back({p0 + u, n, {uvScale.x, 0}});
+        mScene.vertices.push_back({p0 + u + v, n, uvScale});
+        mScene.vertices.push_back({p0 + v, n, {0, uvScale.y}});
+        add(mat, {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+
+    // An axis-aligned box of half size h, rotated by `yawDeg` about +y, standing at `center`.
+    void box(int mat, glm::vec3 center, glm::vec3 h, float yawDeg) {
+        glm::mat4 m = glm::rotate(glm::translate(glm::mat4(1.0f), center), glm::radians(yawDeg), glm::vec3(0, 1, 0));
+        auto P = [&](float x, float y, float z) { return glm::vec3(m * glm::vec4(x * h.x, y * h.y, z * h.z, 1.0f)); };
+        auto D = [&](float x, float y, float z) { return glm::vec3(m * glm::vec4(x * h.x, y * h.y, z * h.z, 0.0f)); };
+        quad(mat, P(-1, -1, 1), D(2, 0, 0), D(0, 2, 0));    // +z
+        quad(mat, P(1, -1, -1), D(-2, 0, 0), D(0, 2, 0));   // -z
+        quad(mat, P(1, -1, 1), D(0, 0, -2), D(0, 2, 0));    // +x
+        quad(mat, P(-1, -1, -1), D(0, 0, 2), D(0, 2, 0));   // -x
+        quad(mat, P(-1, 1, 1), D(2, 0, 0), D(0, 0, -2));    // +y
+        quad(mat, P(-1, -1, -1), D(2, 0, 0), D(0, 0, 2));   // -y
+    }
+
+    void sphere(int mat, glm::vec3 center, float r, int slices = 48, int stacks = 24) {
+        uint32_t base = uint32_t(mScene.vertices.size());
+        for (int i = 0; i <= stacks; ++i) {
+            float theta = float(M_PI) * float(i) / float(stacks);
+            for (int j = 0; j <= slices; ++j) {
+                float phi = 2.0f * float(M_PI) * float(j) / float(slices);
+                glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+                mScene.vertices.push_back({center + r * n, n, {float(j) / slices, float(i) / stacks}});
+            }
+        }
+        std::vector<uint32_t> idx;
+        for (int i = 0; i < stacks; ++i)
+            for (int j = 0; j < slices; ++j) {
+                uint32_t a = base + i * (slices + 1) + j, b = a + slices + 1;
+                if (i != 0) idx.insert(idx.end(), {a, a + 1, b});
+                if (i != stacks - 1) idx.insert(idx.end(), {a + 1, b + 1, b});
+            }
+        add(mat, idx);
+    }
+
+private:
+    Scene& mScene;
+    void add(int mat, const std::vector<uint32_t>& idx) {
+        uint32_t first = uint32_t(mScene.indices.size());
+        mScene.indices.insert(mScene.indices.end(), idx.begin(), idx.end());
+        mScene.draws.push_back({first, uint32_t(idx.size()), mat});
+    }
+};
+
+// A small plank texture for the crate, so the built-in scene exercises the texture path.
+Texture crateTexture() {
+    Texture t;
+    t.name = "crate";
+    t.width = t.height = 64;
+    t.rgba.resize(64 * 64 * 4);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            bool border = x < 5 || x >= 59 || y < 5 || y >= 59;
+            bool seam = (y % 18) == 0;
+            bool brace = std::abs(x - y) < 4 || std::abs(x - (63 - y)) < 4;
+            float grain = 0.9f + 0.1f * std::sin(float(y) * 1.7f + std::sin(float(x) * 0.3f) * 2.0f);
+            float shade = (border || brace) ? 0.75f : (seam ? 0.45f : 1.0f);
+            uint8_t* p = &t.rgba[(y * 64 + x) * 4];
+            p[0] = uint8_t(std::clamp(200.0f * shade * grain, 0.0f, 255.0f));
+            p[1] = uint8_t(std::clamp(150.0f * shade * grain, 0.0f, 255.0f));
+            p[2] = uint8_t(std::clamp(95.0f * shade * grain, 0.0f, 255.0f));
+            p[3] = 255;
+        }
+    return t;
+}
+
+Scene makeCornell() {
+    Scene s;
+    s.name = "cornell";
+    MeshBuilder b(s);
+    // Colours are the Kd values of the McGuire CornellBox-Original set.
+    int white = b.material("white", {0.725f, 0.71f, 0.68f});
+    int red = b.material("red", {0.63f, 0.065f, 0.05f});
+    int green = b.material("green", {0.14f, 0.45f, 0.091f});
+    b.quad(white, {-1, 0, 1}, {2, 0, 0}, {0, 0, -2});    // floor, +y
+    b.quad(white, {-1, 2, -1}, {2, 0, 0}, {0, 0, 2});    // ceiling, -y
+    b.quad(white, {-1, 0, -1}, {2, 0, 0}, {0, 2, 0});    // back wall, +z
+    b.quad(red, {-1, 0, 1}, {0, 0, -2}, {0, 2, 0});      // left wall, +x
+    b.quad(green, {1, 0, -1}, {0, 0, 2}, {0, 2, 0});     // right wall, -x
+    b.box(white, {0.33f, 0.3f, 0.30f}, {0.3f, 0.3f, 0.3f}, -17.0f);   // short box
+    b.box(white, {-0.34f, 0.6f, -0.30f}, {0.3f, 0.6f, 0.3f}, 20.0f);  // tall box
+    // A wide downward spot just below the ceiling stands in for the ceiling lamp.
+    LightSettings lamp;
+    lamp.type = LightType::Spot;
+    lamp.position = {0.0f, 1.95f, 0.0f};
+    lamp.direction = {0.0f, -1.0f, 0.0f};
+    lamp.intensity = 6.0f;
+    lamp.color = {1.0f, 0.85f, 0.65f};
+    lamp.innerConeDeg = 40.0f;
+    lamp.outerConeDeg = 80.0f;
+    s.lights.push_back(lamp);
+    CameraSettings cam;  // the defaults are the classic Cornell view
+    s.cameras.push_back(cam);
+    s.finalize();
+    return s;
+}
+
+Scene makeBasic() {
+    Scene s;
+    s.name = "basic";
+    MeshBuilder b(s);
+    s.textures.push_back(crateTexture());
+    int floor = b.material("floor", {0.8f, 0.7f, 0.4f}, 0.9f);
+    int crate = b.material("crate", {1.0f, 1.0f, 1.0f}, 0.7f, 0);
+    int red = b.material("redSphere", {0.8f, 0.05f, 0.05f}, 0.4f);
+    b.quad(floor, {-6, 0, 6}, {12, 0, 0}, {0, 0, -12}, {6, 6});
+    b.box(crate, {0.0f, 0.5f, 0.0f}, {0.5f, 0.5f, 0.5f}, 25.0f);
+    b.sphere(red, {1.25f, 0.45f, 0.55f}, 0.45f);
+    LightSettings sun;
+    sun.type = LightType::Directional;
+    sun.direction = {-0.4f, -0.8f, -0.45f};
+    sun.intensity = 3.0f;
+    s.lights.push_back(sun);
+    CameraSettings cam;
+    cam.eye = {3.2f, 2.2f, 3.6f};
+    cam.target = {0.5f, 0.35f, 0.2f};
+    cam.fovY = 45.0f;
+    s.cameras.push_back(cam);
+    s.finalize();
+    return s;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() { return {"cornell", "basic"}; }
+
+bool isBuiltinScene(const std::string& name) {
+    for (auto& n : builtinSceneNames())
+        if (n == name) return true;
+    return false;
+}
+
+Scene makeBuiltinScene(const std::string& name) {
+    if (name == "cornell") return makeCornell();
+    if (name == "basic") return makeBasic();
+    throw Error("unknown built-in scene '" + name + "' (valid: cornell, basic)");
+}
+
+Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder) {
+    if (isBuiltinScene(scene)) return makeBuiltinScene(scene);
+    Scene s = loadGLTF(resolveAsset(scene, presetFolder));
+    if (s.cameras.empty()) s.cameras.push_back(frameBounds(s.bounds));
+    if (s.lights.empty()) {
+        // A file with no lights would render black but for the ambient term: add a sun.
+        LightSettings sun;
+        sun.direction = {-0.4f, -0.8f, -0.45f};
+        s.lights.push_back(sun);
+        s.warnings.push_back("the file has no KHR_lights_punctual lights; a default sun was added");
+    }
+    return s;
+}
+
+CameraSettings frameBounds(const Bounds& b) {
+    CameraSettings c;
+    float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);
+    c.target = b.center();
+    c.fovY = 40.0f;
+    float dist = radius / std::sin(glm::radians(c.fovY * 0.5f));
+    c.eye = c.target + glm::normalize(glm::vec3(0.6f, 0.45f, 1.0f)) * dist;
+    c.near = std::max(dist - radius, dist * 1e-3f) * 0.5f;
+    c.far = (dist + radius) * 1.5f;
+    return c;
+}
+
+}  // namespace gi

@@ -1,0 +1,96 @@
+// The CPU scene: world-space triangles grouped by material, materials, textures, the file's
+// cameras and lights. glTF node hierarchies and instancing are flattened into world space at load,
+// so the raster pipeline and the path tracer see exactly the same triangles.
+#pragma once
+
+#include "gi/scene/scene_settings.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gi {
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColor{1.0f};   // linear RGBA factor
+    int baseColorTexture = -1;   // index into Scene::textures, -1 for none
+    float metallic = 0.0f;
+    float roughness = 1.0f;
+    glm::vec3 emissive{0.0f};    // linear, already multiplied by KHR_materials_emissive_strength
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+};
+
+// 8-bit RGBA image, sRGB encoded (base colour textures).
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// A contiguous run of indices drawn with one material.
+struct Draw {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int material = 0;
+};
+
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+    void grow(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    bool valid() const { return min.x <= max.x; }
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    glm::vec3 extent() const { return max - min; }
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Vertex> vertices;   // world space
+    std::vector<uint32_t> indices;  // triangles
+    std::vector<Draw> draws;        // sorted by material
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<CameraSettings> cameras;  // the file's cameras (eye/target/fov), in file order
+    std::vector<LightSettings> lights;    // the file's or the built-in scene's lights
+    std::vector<std::string> warnings;    // content that was skipped, one line each
+    Bounds bounds;
+
+    size_t triangleCount() const { return indices.size() / 3; }
+    // Sorts draws by material, merges neighbours and computes bounds. Loaders call it last.
+    void finalize();
+};
+
+// Built-in scenes that need no files.
+std::vector<std::string> builtinSceneNames();
+bool isBuiltinScene(const std::string& name);
+Scene makeBuiltinScene(const std::string& name);
+
+// glTF 2.0 (.gltf or .glb). Throws gi::Error naming the file and the broken element.
+Scene loadGLTF(const std::filesystem::path& path);
+
+// A camera that frames the bounds, looking at their centre from the front right and above.
+CameraSettings frameBounds(const Bounds& b);
+
+// Resolves a preset's scene string (built-in name, or file through the asset search path).
+// A file without cameras gets one framing its bounds; one without lights gets a default sun.
+Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder = {});
+
+}  // namespace gi

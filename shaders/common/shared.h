@@ -1,0 +1,46 @@
+// Constants shared by C++ and GLSL: texture units, light types, tone mappers, view modes.
+// Written once here; C++ includes it as "common/shared.h", GLSL through the #include expander.
+#ifdef __cplusplus
+#pragma once
+#define GI_CONST inline constexpr
+namespace gi::shared {
+#else
+#define GI_CONST const
+#endif
+
+// Texture units of the lighting and composite passes.
+GI_CONST int kUnitAlbedo = 0;
+GI_CONST int kUnitNormal = 1;
+GI_CONST int kUnitMaterial = 2;
+GI_CONST int kUnitEmissive = 3;
+GI_CONST int kUnitDepth = 4;
+GI_CONST int kUnitIndirect = 5;
+GI_CONST int kUnitShadow2D = 6;
+GI_CONST int kUnitShadowCube = 7;
+// Material base colour texture in the G-buffer and shadow passes.
+GI_CONST int kUnitBaseColor = 0;
+// Source texture of the view and tone-map passes.
+GI_CONST int kUnitSource = 0;
+GI_CONST int kUnitSourceCube = 1;
+
+// LightSettings::type as an int.
+GI_CONST int kLightDirectional = 0;
+GI_CONST int kLightPoint = 1;
+GI_CONST int kLightSpot = 2;
+
+// ToneMapper as an int.
+GI_CONST int kToneLinear = 0;
+GI_CONST int kToneReinhard = 1;
+GI_CONST int kToneACES = 2;
+
+// Debug view modes (view.frag).
+GI_CONST int kViewColor = 0;        // RGB as stored (linear HDR shown with exposure, sRGB encoded)
+GI_CONST int kViewNormal = 1;       // xyz * 0.5 + 0.5
+GI_CONST int kViewLinearDepth = 2;  // hyperbolic depth buffer turned into view distance / far
+GI_CONST int kViewRawDepth = 3;     // stored depth as grey
+GI_CONST int kViewCubeCross = 4;    // a cube map unfolded as a cross
+GI_CONST int kViewDisplay = 5;      // already display-encoded (LDR output): no transfer curve
+
+#ifdef __cplusplus
+}  // namespace gi::shared
+#endif

@@ -1,0 +1,75 @@
+// Debug views of any texture: channel select, exposure, zoom and pan, depth linearisation and
+// cube maps unfolded as a cross. Used by the editor's buffer previewer and `gi-render --views`.
+#include "common/shared.h"
+#include "common/color.glsl"
+
+layout(binding = kUnitSource) uniform sampler2D uSource;
+layout(binding = kUnitSourceCube) uniform samplerCube uSourceCube;
+uniform int uMode;
+uniform vec4 uChannelMask;   // (1,1,1,0) shows RGB; a single 1 shows that channel as grey
+uniform float uExposureScale;
+uniform float uNear;
+uniform float uFar;
+uniform float uRange;       // distance shown as black in linear depth views
+uniform vec2 uPan;           // texture-space offset of the view centre
+uniform float uZoom;         // 1 shows the whole texture
+uniform float uLevel;        // mip level
+
+in vec2 vUV;
+out vec4 oColor;
+
+vec3 cubeCross(vec2 uv, out bool inside) {
+    // 4 x 3 cross: row 1 holds -X +Z +X -Z; +Y above +Z, -Y below.
+    vec2 cell = floor(uv * vec2(4.0, 3.0));
+    vec2 f = fract(uv * vec2(4.0, 3.0)) * 2.0 - 1.0;
+    inside = true;
+    if (cell.y == 1.0) {
+        if (cell.x == 0.0) return vec3(-1.0, -f.y, f.x);
+        if (cell.x == 1.0) return vec3(f.x, -f.y, 1.0);
+        if (cell.x == 2.0) return vec3(1.0, -f.y, -f.x);
+        return vec3(-f.x, -f.y, -1.0);
+    }
+    if (cell.x == 1.0 && cell.y == 2.0) return vec3(f.x, 1.0, f.y);
+    if (cell.x == 1.0 && cell.y == 0.0) return vec3(f.x, -1.0, -f.y);
+    inside = false;
+    return vec3(0.0, 0.0, 1.0);
+}
+
+void main() {
+    vec2 uv = (vUV - 0.5) / uZoom + 0.5 + uPan;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
+        float checker = mod(floor(gl_FragCoord.x / 8.0) + floor(gl_FragCoord.y / 8.0), 2.0);
+        oColor = vec4(vec3(0.1 + 0.05 * checker), 1.0);
+        return;
+    }
+    vec4 v;
+    if (uMode == kViewCubeCross) {
+        bool inside;
+        vec3 dir = cubeCross(vec2(uv.x, 1.0 - uv.y), inside);
+        if (!inside) {
+            oColor = vec4(0.05, 0.05, 0.05, 1.0);
+            return;
+        }
+        v = textureLod(uSourceCube, dir, uLevel);
+        v = vec4(v.rrr, 1.0);
+    } else {
+        v = textureLod(uSource, uv, uLevel);
+    }
+    vec3 c;
+    bool single = dot(uChannelMask, vec4(1.0)) < 1.5;
+    if (uMode == kViewNormal) {
+        c = v.xyz * 0.5 + 0.5;
+    } else if (uMode == kViewLinearDepth) {
+        float z = v.r * 2.0 - 1.0;
+        float linear = 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
+        c = vec3(1.0 - clamp(linear / uRange, 0.0, 1.0));
+    } else if (uMode == kViewRawDepth) {
+        c = vec3(v.r);
+    } else {
+        c = v.rgb;
+    }
+    if (single) c = vec3(dot(v, uChannelMask));
+    if (uMode == kViewColor || uMode == kViewCubeCross) c = linearToSRGB(c * uExposureScale);
+    else if (uMode == kViewDisplay) c = clamp(c * uExposureScale, 0.0, 1.0);
+    oColor = vec4(c, 1.0);
+}
