@@ -57,8 +57,12 @@ int run(int argc, char** argv) {
     app.add_flag("--json", listJson, "With --list-settings: print a JSON list");
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // One line, like every other error of the runner.
+        std::fprintf(stderr, "gi-render: %s (see --help)\n", e.what());
+        return 2;
     }
     if (list) {
         printSettings(listJson);
@@ -73,6 +77,9 @@ int run(int argc, char** argv) {
 
     gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "gi-render: warning: %s: %s\n", scene.name.c_str(), w.c_str());
+    if (preset.lightsFromScene && scene.lights.empty())
+        std::fprintf(stderr, "gi-render: warning: %s has no lights and the preset names none; a default sun is used\n",
+                     scene.name.c_str());
     gi::FrameSettings frame = gi::frameSettings(preset, scene, width, height);
     // Refuse before any GL allocation (the scene estimate counts vertices, indices and textures).
     size_t sceneBytes = scene.vertices.size() * sizeof(gi::Vertex) + scene.indices.size() * 4;

@@ -11,6 +11,9 @@ static void GLAPIENTRY onDebugMessage(GLenum source, GLenum type, GLuint id, GLe
                                       const GLchar* message, const void*) {
     if (type == GL_DEBUG_TYPE_PUSH_GROUP || type == GL_DEBUG_TYPE_POP_GROUP) return;
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
+    // Compiler diagnostics are bad input, not GL misuse: Program reports them as gi::Error with
+    // the file and line, so they are neither printed nor counted here.
+    if (source == GL_DEBUG_SOURCE_SHADER_COMPILER) return;
     if (type == GL_DEBUG_TYPE_ERROR) ++gErrorCount;
     const char* kind = type == GL_DEBUG_TYPE_ERROR ? "error"
                        : type == GL_DEBUG_TYPE_PERFORMANCE ? "performance"

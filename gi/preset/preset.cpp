@@ -192,6 +192,12 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
         fs.camera.fovY = c.fovY;
     }
     fs.lights = p.lightsFromScene ? scene.lights : p.lights;
+    if (p.lightsFromScene && scene.lights.empty()) {
+        // A file with no lights would render black but for the ambient term: light it with a sun.
+        LightSettings sun;
+        sun.direction = {-0.4f, -0.8f, -0.45f};
+        fs.lights.push_back(sun);
+    }
     fs.render = p.render;
     fs.toneMap = p.toneMap;
     fs.width = width;

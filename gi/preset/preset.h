@@ -68,7 +68,8 @@ struct Scene;
 // A preset for any runner input: a preset file as it is, or a glTF file rendered with its own
 // cameras (`sceneCamera`, -1 to frame the scene) and lights. Throws gi::Error.
 Preset presetForInput(const std::filesystem::path& input, int sceneCamera);
-// Resolves the preset against a loaded scene: the scene's lights when the preset has none, the
+// Resolves the preset against a loaded scene: the scene's lights when the preset has none (a
+// default sun when the scene has none either), the
 // file's camera when camera.sceneCamera is set. Throws gi::Error for a camera index past the end.
 FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int height);
 

@@ -87,7 +87,10 @@ constexpr size_t kTargetBytesPerPixel = 8 + 8 + 4;            // indirect, HDR, 
 
 Renderer::Renderer()
     : mGBufferProg("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}),
-      mShadowProg("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}}),
+      mShadowProg("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
+                  {"LINEAR_DEPTH=0"}),
+      mShadowPointProg("shadowPoint", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
+                       {"LINEAR_DEPTH=1"}),
       mCompositeProg(fullscreenProgram("composite", "render/composite.frag")),
       mLightProg(fullscreenProgram("light", "render/light.frag")),
       mToneProg(fullscreenProgram("tonemap", "render/tonemap.frag")),
@@ -234,15 +237,14 @@ void Renderer::renderShadows(const FrameSettings& fs) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mShadowSize, mShadowSize);
-    mShadowProg.use();
     glBindSampler(kUnitBaseColor, mMaterialSampler.id());
 
-    auto drawScene = [&]() {
+    auto drawScene = [&](const gl::Program& prog) {
         mScene->draw([&](const Material& m, int) {
             bool mask = m.alphaMode == AlphaMode::Mask;
-            mShadowProg.set("uAlphaCutoff", mask ? m.alphaCutoff : -1.0f);
-            mShadowProg.set("uBaseAlpha", m.baseColor.a);
-            mShadowProg.set("uHasTexture", mask && m.baseColorTexture >= 0 ? 1 : 0);
+            prog.set("uAlphaCutoff", mask ? m.alphaCutoff : -1.0f);
+            prog.set("uBaseAlpha", m.baseColor.a);
+            prog.set("uHasTexture", mask && m.baseColorTexture >= 0 ? 1 : 0);
             glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
         });
     };
@@ -271,10 +273,10 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             if (l.range > 0.0f) sm.far = std::min(sm.far, l.range);
             sm.texel = 2.0f / float(mShadowSize);
         }
-        mShadowProg.set("uLinearDepth", l.type == LightType::Point ? 1 : 0);
-        mShadowProg.set("uLightPos", l.position);
-        mShadowProg.set("uFar", sm.far);
         if (l.type == LightType::Point) {
+            mShadowPointProg.use();
+            mShadowPointProg.set("uLightPos", l.position);
+            mShadowPointProg.set("uFar", sm.far);
             // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
             const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
             const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
@@ -282,14 +284,15 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             for (int face = 0; face < 6; ++face) {
                 glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
                 glClear(GL_DEPTH_BUFFER_BIT);
-                mShadowProg.set("uLightViewProj", proj * glm::lookAt(l.position, l.position + dirs[face], ups[face]));
-                drawScene();
+                mShadowPointProg.set("uLightViewProj", proj * glm::lookAt(l.position, l.position + dirs[face], ups[face]));
+                drawScene(mShadowPointProg);
             }
         } else {
+            mShadowProg.use();
             glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[0].id());
             glClear(GL_DEPTH_BUFFER_BIT);
             mShadowProg.set("uLightViewProj", sm.viewProj);
-            drawScene();
+            drawScene(mShadowProg);
         }
     }
     glBindSampler(kUnitBaseColor, 0);
@@ -412,7 +415,7 @@ void Renderer::renderToneMap(const FrameSettings& fs) {
 bool Renderer::reloadShaders(std::string& log) {
     bool ok = true;
     log.clear();
-    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
+    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

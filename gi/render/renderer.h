@@ -119,7 +119,7 @@ private:
     };
 
     std::unique_ptr<GPUScene> mScene;
-    gl::Program mGBufferProg, mShadowProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
+    gl::Program mGBufferProg, mShadowProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
     gl::VertexArray mEmptyVAO;
     gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler;
     gl::Texture mWhite;

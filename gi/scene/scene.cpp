@@ -1,5 +1,7 @@
 #include "gi/scene/scene.h"
 
+#include "gi/scene/mesh_builder.h"
+
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
 
@@ -29,74 +31,6 @@ void Scene::finalize() {
 }
 
 namespace {
-
-// Builds meshes for the procedural scenes.
-class MeshBuilder {
-public:
-    explicit MeshBuilder(Scene& s) : mScene(s) {}
-
-    int material(const std::string& name, glm::vec3 color, float roughness = 0.8f, int texture = -1) {
-        Material m;
-        m.name = name;
-        m.baseColor = glm::vec4(color, 1.0f);
-        m.roughness = roughness;
-        m.baseColorTexture = texture;
-        mScene.materials.push_back(m);
-        return int(mScene.materials.size()) - 1;
-    }
-
-    // A quad with corners p0, p0+u, p0+u+v, p0+v; the normal is normalize(cross(u, v)).
-    void quad(int mat, glm::vec3 p0, glm::vec3 u, glm::vec3 v, glm::vec2 uvScale = glm::vec2(1.0f)) {
-        glm::vec3 n = glm::normalize(glm::cross(u, v));
-        uint32_t base = uint32_t(mScene.vertices.size());
-        mScene.vertices.push_back({p0, n, {0, 0}});
-        mScene.vertices.push_back({p0 + u, n, {uvScale.x, 0}});
-        mScene.vertices.push_back({p0 + u + v, n, uvScale});
-        mScene.vertices.push_back({p0 + v, n, {0, uvScale.y}});
-        add(mat, {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-
-    // An axis-aligned box of half size h, rotated by `yawDeg` about +y, standing at `center`.
-    void box(int mat, glm::vec3 center, glm::vec3 h, float yawDeg) {
-        glm::mat4 m = glm::rotate(glm::translate(glm::mat4(1.0f), center), glm::radians(yawDeg), glm::vec3(0, 1, 0));
-        auto P = [&](float x, float y, float z) { return glm::vec3(m * glm::vec4(x * h.x, y * h.y, z * h.z, 1.0f)); };
-        auto D = [&](float x, float y, float z) { return glm::vec3(m * glm::vec4(x * h.x, y * h.y, z * h.z, 0.0f)); };
-        quad(mat, P(-1, -1, 1), D(2, 0, 0), D(0, 2, 0));    // +z
-        quad(mat, P(1, -1, -1), D(-2, 0, 0), D(0, 2, 0));   // -z
-        quad(mat, P(1, -1, 1), D(0, 0, -2), D(0, 2, 0));    // +x
-        quad(mat, P(-1, -1, -1), D(0, 0, 2), D(0, 2, 0));   // -x
-        quad(mat, P(-1, 1, 1), D(2, 0, 0), D(0, 0, -2));    // +y
-        quad(mat, P(-1, -1, -1), D(2, 0, 0), D(0, 0, 2));   // -y
-    }
-
-    void sphere(int mat, glm::vec3 center, float r, int slices = 48, int stacks = 24) {
-        uint32_t base = uint32_t(mScene.vertices.size());
-        for (int i = 0; i <= stacks; ++i) {
-            float theta = float(M_PI) * float(i) / float(stacks);
-            for (int j = 0; j <= slices; ++j) {
-                float phi = 2.0f * float(M_PI) * float(j) / float(slices);
-                glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-                mScene.vertices.push_back({center + r * n, n, {float(j) / slices, float(i) / stacks}});
-            }
-        }
-        std::vector<uint32_t> idx;
-        for (int i = 0; i < stacks; ++i)
-            for (int j = 0; j < slices; ++j) {
-                uint32_t a = base + i * (slices + 1) + j, b = a + slices + 1;
-                if (i != 0) idx.insert(idx.end(), {a, a + 1, b});
-                if (i != stacks - 1) idx.insert(idx.end(), {a + 1, b + 1, b});
-            }
-        add(mat, idx);
-    }
-
-private:
-    Scene& mScene;
-    void add(int mat, const std::vector<uint32_t>& idx) {
-        uint32_t first = uint32_t(mScene.indices.size());
-        mScene.indices.insert(mScene.indices.end(), idx.begin(), idx.end());
-        mScene.draws.push_back({first, uint32_t(idx.size()), mat});
-    }
-};
 
 // A small plank texture for the crate, so the built-in scene exercises the texture path.
 Texture crateTexture() {
@@ -196,13 +130,6 @@ Scene loadScene(const std::string& scene, const std::filesystem::path& presetFol
     if (isBuiltinScene(scene)) return makeBuiltinScene(scene);
     Scene s = loadGLTF(resolveAsset(scene, presetFolder));
     if (s.cameras.empty()) s.cameras.push_back(frameBounds(s.bounds));
-    if (s.lights.empty()) {
-        // A file with no lights would render black but for the ambient term: add a sun.
-        LightSettings sun;
-        sun.direction = {-0.4f, -0.8f, -0.45f};
-        s.lights.push_back(sun);
-        s.warnings.push_back("the file has no KHR_lights_punctual lights; a default sun was added");
-    }
     return s;
 }
 

@@ -90,7 +90,7 @@ Scene loadGLTF(const std::filesystem::path& path);
 CameraSettings frameBounds(const Bounds& b);
 
 // Resolves a preset's scene string (built-in name, or file through the asset search path).
-// A file without cameras gets one framing its bounds; one without lights gets a default sun.
+// A file without cameras gets one framing its bounds.
 Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder = {});
 
 }  // namespace gi

@@ -1,14 +1,16 @@
-// Shadow pass fragment: alpha-masked materials cut holes; point lights store distance / far so
-// the six cube faces share one linear depth scale.
+// Shadow pass fragment: alpha-masked materials cut holes. With LINEAR_DEPTH (point lights) it
+// stores distance / far so the six cube faces share one linear depth scale; without it the
+// depth is left to fixed function, which keeps early depth testing on.
 #include "common/shared.h"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 uniform bool uHasTexture;
 uniform float uAlphaCutoff;
 uniform float uBaseAlpha;
-uniform bool uLinearDepth;
+#if LINEAR_DEPTH
 uniform vec3 uLightPos;
 uniform float uFar;
+#endif
 
 in vec3 vWorld;
 in vec2 vUV;
@@ -18,5 +20,7 @@ void main() {
         float a = uBaseAlpha * (uHasTexture ? texture(uBaseColorTex, vUV).a : 1.0);
         if (a < uAlphaCutoff) discard;
     }
-    gl_FragDepth = uLinearDepth ? length(vWorld - uLightPos) / uFar : gl_FragCoord.z;
+#if LINEAR_DEPTH
+    gl_FragDepth = length(vWorld - uLightPos) / uFar;
+#endif
 }

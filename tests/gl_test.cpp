@@ -1,0 +1,268 @@
+// GL tests on the headless EGL context (Mesa llvmpipe in CI): direct light against the analytic
+// radiance, shadows, shader errors and reload, determinism and the memory budget.
+#include "gi/gl/shader.h"
+#include "gi/preset/preset.h"
+#include "gi/render/renderer.h"
+#include "gi/scene/mesh_builder.h"
+#include "gi/util/paths.h"
+#include "test_util.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <fstream>
+
+namespace gi {
+namespace {
+
+constexpr int kSize = 128;
+
+// A large grey floor at y = 0, optionally with a floating plate at y = plateY over [-0.5, 0.5]^2.
+Scene floorScene(float albedo, bool plate, float plateY = 1.0f) {
+    Scene s;
+    s.name = "floor";
+    MeshBuilder b(s);
+    int grey = b.material("grey", glm::vec3(albedo), 1.0f);
+    b.quad(grey, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40});
+    if (plate) b.quad(grey, {-0.5f, plateY, 0.5f}, {1, 0, 0}, {0, 0, -1});
+    s.finalize();
+    return s;
+}
+
+FrameSettings frame(glm::vec3 eye, glm::vec3 target, LightSettings light) {
+    FrameSettings fs;
+    fs.camera.eye = eye;
+    fs.camera.target = target;
+    fs.camera.near = 0.01f;
+    fs.lights = {light};
+    fs.render.ambient = glm::vec3(0.0f);
+    fs.render.specular = false;
+    fs.toneMap.op = ToneMapper::Linear;
+    fs.width = fs.height = kSize;
+    return fs;
+}
+
+// Mean HDR radiance of the 4x4 pixels at the image centre (the camera target).
+glm::vec3 centreRadiance(const Renderer& r) {
+    std::vector<float> px = r.readHDR();
+    glm::vec3 sum(0.0f);
+    for (int y = kSize / 2 - 2; y < kSize / 2 + 2; ++y)
+        for (int x = kSize / 2 - 2; x < kSize / 2 + 2; ++x)
+            sum += glm::vec3(px[(y * kSize + x) * 4], px[(y * kSize + x) * 4 + 1], px[(y * kSize + x) * 4 + 2]);
+    return sum / 16.0f;
+}
+
+class GL : public test::GLTest {};
+
+TEST_F(GL, ContextIsOpenGL45Core) {
+    GLint major = 0, minor = 0, profile = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+    EXPECT_GE(major * 10 + minor, 45);
+    EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+    std::printf("renderer: %s\n", glRendererString().c_str());
+}
+
+TEST_F(GL, LambertPlaneMatchesAnalyticRadiance) {
+    const float albedo = 0.5f;
+    Renderer r;
+    r.setScene(floorScene(albedo, false));
+    const glm::vec3 target(0.3f, 0.0f, -0.2f);
+    const glm::vec3 eye(1.0f, 3.0f, 2.0f);
+
+    // Directional: L = albedo / pi * E * cos(theta).
+    LightSettings sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+    sun.intensity = 2.0f;
+    r.render(frame(eye, target, sun));
+    float expected = albedo / glm::pi<float>() * sun.intensity * -sun.direction.y;
+    EXPECT_NEAR(centreRadiance(r).x, expected, 0.01f * expected);
+    EXPECT_NEAR(centreRadiance(r).z, expected, 0.01f * expected);
+
+    // Point: L = albedo / pi * I * cos(theta) / d^2.
+    LightSettings point;
+    point.type = LightType::Point;
+    point.position = {-0.5f, 1.5f, 0.4f};
+    point.intensity = 5.0f;
+    r.render(frame(eye, target, point));
+    glm::vec3 toLight = point.position - target;
+    float d = glm::length(toLight);
+    expected = albedo / glm::pi<float>() * point.intensity * (toLight.y / d) / (d * d);
+    EXPECT_NEAR(centreRadiance(r).y, expected, 0.01f * expected);
+
+    // Spot, target inside the inner cone: same as a point light.
+    LightSettings spot = point;
+    spot.type = LightType::Spot;
+    spot.direction = glm::normalize(target - spot.position);
+    spot.innerConeDeg = 20.0f;
+    spot.outerConeDeg = 30.0f;
+    r.render(frame(eye, target, spot));
+    EXPECT_NEAR(centreRadiance(r).y, expected, 0.01f * expected);
+    // Outside the outer cone: dark.
+    spot.direction = glm::normalize(glm::vec3(1, -0.2f, 0));
+    r.render(frame(eye, target, spot));
+    EXPECT_LT(centreRadiance(r).y, 1e-4f);
+}
+
+TEST_F(GL, ShadowedPointIsDarkForEveryLightType) {
+    Renderer r;
+    r.setScene(floorScene(0.5f, true, 1.0f));
+    // The camera looks from the side, under the plate, at the floor point below it.
+    const glm::vec3 eye(3.0f, 0.4f, 0.3f);
+    LightSettings lights[3];
+    lights[0].type = LightType::Directional;
+    lights[0].direction = {0.0f, -1.0f, 0.0f};
+    lights[1].type = LightType::Point;
+    lights[1].position = {0.0f, 3.0f, 0.0f};
+    lights[1].intensity = 30.0f;
+    lights[2].type = LightType::Spot;
+    lights[2].position = {0.0f, 3.0f, 0.0f};
+    lights[2].direction = {0.0f, -1.0f, 0.0f};
+    lights[2].intensity = 30.0f;
+    lights[2].outerConeDeg = 60.0f;
+    lights[2].innerConeDeg = 50.0f;
+    for (const LightSettings& l : lights) {
+        r.render(frame(eye, {0.0f, 0.0f, 0.0f}, l));
+        float shadowed = centreRadiance(r).x;
+        r.render(frame(eye, {1.2f, 0.0f, 0.0f}, l));  // beside the plate's shadow
+        float lit = centreRadiance(r).x;
+        EXPECT_GT(lit, 0.2f) << "light type " << int(l.type);
+        EXPECT_LT(shadowed, 0.01f * lit) << "light type " << int(l.type);
+        // Without shadows the same point is lit.
+        LightSettings noShadow = l;
+        noShadow.castShadows = false;
+        r.render(frame(eye, {0.0f, 0.0f, 0.0f}, noShadow));
+        EXPECT_GT(centreRadiance(r).x, 0.5f * lit) << "light type " << int(l.type);
+    }
+}
+
+TEST_F(GL, AmbientAndEmissiveComposite) {
+    Scene s;
+    MeshBuilder b(s);
+    int m = b.material("m", glm::vec3(0.4f), 1.0f);
+    b.quad(m, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40});
+    s.materials[m].emissive = {0.25f, 0.0f, 0.0f};
+    s.finalize();
+    Renderer r;
+    r.setScene(s);
+    FrameSettings fs = frame({0, 2, 2}, {0, 0, 0}, LightSettings{});
+    fs.lights.clear();
+    fs.render.ambient = {0.5f, 0.5f, 0.5f};
+    r.render(fs);
+    glm::vec3 c = centreRadiance(r);
+    EXPECT_NEAR(c.x, 0.25f + 0.4f * 0.5f, 1e-3f);
+    EXPECT_NEAR(c.y, 0.4f * 0.5f, 1e-3f);
+}
+
+TEST_F(GL, RendersAreDeterministic) {
+    Preset p;
+    Scene scene = loadScene(p.header.scene);
+    FrameSettings fs = frameSettings(p, scene, kSize, kSize);
+    std::vector<uint8_t> images[2];
+    for (auto& img : images) {
+        Renderer r;
+        r.setScene(scene);
+        r.render(fs);
+        img = r.readLDR();
+    }
+    EXPECT_EQ(images[0], images[1]);
+    size_t nonBlack = 0;
+    for (size_t i = 0; i < images[0].size(); i += 4) nonBlack += images[0][i] + images[0][i + 1] + images[0][i + 2] > 30;
+    EXPECT_GT(nonBlack, images[0].size() / 4 / 2) << "the default preset renders mostly black";
+}
+
+TEST_F(GL, EveryPassIsTimedAndReportsMemory) {
+    Preset p;
+    Scene scene = loadScene("basic");
+    Renderer r;
+    r.setScene(scene);
+    r.render(frameSettings(p, scene, kSize, kSize));
+    r.timer().resolve(true);
+    std::vector<std::string> names;
+    for (const auto& s : r.passStats()) {
+        names.push_back(s.name);
+        EXPECT_GE(s.gpuMs, 0.0);
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"shadows", "gbuffer", "indirect", "lighting", "tonemap"}));
+    EXPECT_GT(r.memoryBytes(), size_t(kSize) * kSize * 40);
+    for (const auto& v : r.debugViews()) {
+        auto img = r.renderViewImage(v, 64, 64);
+        EXPECT_EQ(img.size(), 64u * 64u * 4u) << v.name;
+    }
+}
+
+TEST_F(GL, MemoryBudgetRefusesHugeSettingsBeforeAllocating) {
+    FrameSettings fs;
+    fs.lights.resize(2);
+    fs.lights[1].type = LightType::Point;
+    fs.render.shadowMapSize = 8192;  // a cube of 8192^2 x 6 x 4 bytes = 1.5 GiB
+    fs.render.memoryBudgetMB = 512;
+    try {
+        Renderer::checkBudget(fs, 0);
+        FAIL() << "not refused";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("render.memoryBudgetMB"), std::string::npos) << e.what();
+    }
+    fs.render.shadowMapSize = 1024;
+    EXPECT_NO_THROW(Renderer::checkBudget(fs, 0));
+    fs.width = -3;
+    EXPECT_THROW(Renderer::checkBudget(fs, 0), Error);
+}
+
+class Shaders : public test::GLTest {
+protected:
+    std::filesystem::path mDir;
+    void SetUp() override {
+        test::GLTest::SetUp();
+        mDir = test::tempDir();
+        std::filesystem::create_directories(mDir / "common");
+        std::filesystem::copy(std::filesystem::path(GI_SHADER_DIR) / "common" / "fullscreen.vert", mDir / "common");
+        setenv("GI_SHADER_DIR", mDir.c_str(), 1);
+    }
+    void TearDown() override {
+        unsetenv("GI_SHADER_DIR");
+        test::GLTest::TearDown();
+    }
+    void write(const std::string& name, const std::string& text) { std::ofstream(mDir / name) << text; }
+};
+
+TEST_F(Shaders, CompileErrorNamesFileAndLine) {
+    write("inc.glsl", "float helper() { return 1.0; }\n");
+    write("bad.frag", "#include \"inc.glsl\"\nout vec4 o;\nvoid main() {\n  o = vec4(undefinedThing);\n}\n");
+    try {
+        gl::Program p("bad", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "bad.frag"}});
+        FAIL() << "compiled";
+    } catch (const Error& e) {
+        std::string msg = e.what();
+        EXPECT_NE(msg.find("bad.frag:4"), std::string::npos) << msg;
+    }
+    write("errinc.glsl", "\nfloat broken( { }\n");
+    write("inc2.frag", "#include \"errinc.glsl\"\nout vec4 o;\nvoid main() { o = vec4(1.0); }\n");
+    try {
+        gl::Program p("inc2", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "inc2.frag"}});
+        FAIL() << "compiled";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("errinc.glsl:2"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(Shaders, FailedReloadKeepsTheLastGoodProgram) {
+    write("p.frag", "out vec4 o;\nvoid main() { o = vec4(1.0); }\n");
+    gl::Program p("p", {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "p.frag"}});
+    GLuint before = p.id();
+    ASSERT_NE(before, 0u);
+    write("p.frag", "out vec4 o;\nvoid main() { o = vec4(1.0) }\n");
+    EXPECT_FALSE(p.reload());
+    EXPECT_EQ(p.id(), before);
+    EXPECT_NE(p.log().find("p.frag:2"), std::string::npos) << p.log();
+    GLint linked = 0;
+    glGetProgramiv(p.id(), GL_LINK_STATUS, &linked);
+    EXPECT_TRUE(linked);
+    write("p.frag", "out vec4 o;\nvoid main() { o = vec4(0.5); }\n");
+    EXPECT_TRUE(p.reload());
+    EXPECT_TRUE(p.log().empty());
+}
+
+}  // namespace
+}  // namespace gi

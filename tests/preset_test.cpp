@@ -1,0 +1,161 @@
+// Preset files: the shipped presets, validation messages, --set, schema version, atomic saves.
+#include "gi/preset/preset.h"
+#include "gi/util/paths.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+namespace gi {
+namespace {
+
+std::string errorOf(const json& j) {
+    try {
+        presetFromJson(j, "p.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Preset, ShippedPresetsLoad) {
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(GI_PRESET_DIR)) {
+        if (entry.path().extension() != ".json") continue;
+        EXPECT_NO_THROW(loadPreset(entry.path())) << entry.path();
+        ++count;
+    }
+    EXPECT_GE(count, 3);
+}
+
+TEST(Preset, DefaultFileEqualsTheBuiltInDefault) {
+    // gi-render without input and the editor without files use Preset{}: it must match the file.
+    Preset file = loadPreset(std::filesystem::path(GI_PRESET_DIR) / "default.json");
+    EXPECT_EQ(presetToJson(file), presetToJson(Preset{}));
+}
+
+TEST(Preset, SaveLoadRoundTripIsAtomic) {
+    auto dir = test::tempDir();
+    Preset p;
+    p.header.scene = "basic";
+    p.camera.fovY = 55.0f;
+    p.lightsFromScene = false;
+    LightSettings l;
+    l.type = LightType::Spot;
+    l.outerConeDeg = 35.0f;
+    p.lights.push_back(l);
+    auto path = dir / "p.json";
+    {
+        std::ofstream(path) << "previous";
+    }
+    savePreset(p, path);
+    Preset back = loadPreset(path);
+    EXPECT_EQ(presetToJson(back), presetToJson(p));
+    int files = 0;
+    for (auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+    EXPECT_EQ(files, 1) << "a temporary file was left behind";
+    EXPECT_THROW(savePreset(p, dir / "missing" / "p.json"), Error);
+    EXPECT_EQ(presetToJson(loadPreset(path)), presetToJson(p)) << "a failed save touched another file";
+}
+
+TEST(Preset, MessagesNameTheKey) {
+    json base = presetToJson(Preset{});
+    auto with = [&](const std::function<void(json&)>& f) {
+        json j = base;
+        f(j);
+        return errorOf(j);
+    };
+    EXPECT_NE(with([](json& j) { j["render"]["shadowMapSize"] = 100000; }).find("key 'render.shadowMapSize': 100000 is out of range [64, 8192]"),
+              std::string::npos);
+    EXPECT_NE(with([](json& j) { j["render"]["shadowMapSise"] = 1; }).find("did you mean 'render.shadowMapSize'"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j["camra"] = json::object(); }).find("did you mean 'camera'"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j["camera"]["fovY"] = "wide"; }).find("key 'camera.fovY': expected a number, got string"),
+              std::string::npos);
+    EXPECT_NE(with([](json& j) { j["technique"] = "magic"; }).find("unknown value 'magic' (valid: none)"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j["lights"] = json::array({{{"type", "laser"}}}); }).find("key 'lights.0.type'"),
+              std::string::npos);
+    EXPECT_NE(with([](json& j) { j["lights"] = 3; }).find("key 'lights'"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j["camera"]["eye"] = json::array({1, 2}); }).find("key 'camera.eye'"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j.erase("schemaVersion"); }).find("'schemaVersion' is missing"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j["schemaVersion"] = 99; }).find("newer than this build"), std::string::npos);
+    EXPECT_NE(errorOf(json::array()).find("must be a JSON object"), std::string::npos);
+}
+
+TEST(Preset, BrokenFilesGiveOneLineErrors) {
+    auto dir = test::tempDir();
+    auto write = [&](const char* name, const char* text) {
+        std::ofstream(dir / name) << text;
+        return dir / name;
+    };
+    for (auto path : {write("trunc.json", "{\"schemaVersion\": 1, \"scene\": "), write("empty.json", ""),
+                      write("garbage.json", "\x01\x02\xff"), dir / "missing.json"}) {
+        try {
+            loadPreset(path);
+            ADD_FAILURE() << path << " loaded";
+        } catch (const Error& e) {
+            std::string msg = e.what();
+            EXPECT_NE(msg.find(path.filename().string()), std::string::npos) << msg;
+            EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        }
+    }
+}
+
+TEST(Preset, ApplySetting) {
+    Preset p;
+    applySetting(p, "render.shadowMapSize=512");
+    EXPECT_EQ(p.render.shadowMapSize, 512);
+    applySetting(p, "camera.eye=[1,2,3]");
+    EXPECT_EQ(p.camera.eye, glm::vec3(1, 2, 3));
+    applySetting(p, "toneMap.op=reinhard");
+    EXPECT_EQ(p.toneMap.op, ToneMapper::Reinhard);
+    applySetting(p, "scene=basic");
+    EXPECT_EQ(p.header.scene, "basic");
+    EXPECT_THROW(applySetting(p, "render.shadowMapSize=-4"), Error);
+    EXPECT_THROW(applySetting(p, "render.shadowMapSize"), Error);
+    try {
+        applySetting(p, "render.shadowmapsize=4");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("did you mean 'render.shadowMapSize'"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(applySetting(p, "lights.0.intensity=2"), Error);  // lights come from the scene
+    p.lightsFromScene = false;
+    p.lights.resize(1);
+    applySetting(p, "lights.0.intensity=2");
+    EXPECT_FLOAT_EQ(p.lights[0].intensity, 2.0f);
+    EXPECT_THROW(applySetting(p, "lights.3.intensity=2"), Error);
+    EXPECT_THROW(applySetting(p, "lights.x.intensity=2"), Error);
+}
+
+TEST(Preset, ListSettingsCoversEveryKeyOnce) {
+    auto list = listSettings();
+    std::set<std::string> keys;
+    for (auto& s : list) {
+        EXPECT_TRUE(keys.insert(s.key).second) << "duplicate " << s.key;
+        EXPECT_FALSE(s.description.empty()) << s.key;
+        json j = settingInfoToJson(s);
+        EXPECT_TRUE(j.contains("default")) << s.key;
+    }
+    for (auto k : {"scene", "technique", "camera.fovY", "render.shadowMapSize", "toneMap.exposure", "lights.N.type"})
+        EXPECT_TRUE(keys.count(k)) << k;
+}
+
+TEST(Preset, AssetSearchPathOrder) {
+    auto dir = test::tempDir();
+    std::ofstream(dir / "a.gltf") << "{}";
+    EXPECT_EQ(resolveAsset("a.gltf", dir), dir / "a.gltf");
+    setenv("GI_ASSET_PATH", dir.c_str(), 1);
+    EXPECT_EQ(resolveAsset("a.gltf"), dir / "a.gltf");
+    unsetenv("GI_ASSET_PATH");
+    try {
+        resolveAsset("nope/missing.gltf", dir);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("GI_ASSET_PATH"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace gi

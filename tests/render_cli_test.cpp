@@ -1,0 +1,145 @@
+// gi-render end to end: every shipped preset renders, outputs and stats are complete, bad input
+// gives a one-line error and a non-zero exit, and the same input gives the same pixels.
+#include "gi/preset/reflect.h"
+#include "gi/render/image_io.h"
+#include "gi/util/paths.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace gi {
+namespace {
+
+std::string render(const std::string& args) { return std::string(GI_RENDER_EXE) + " " + args; }
+
+json readJSON(const std::filesystem::path& p) { return json::parse(readTextFile(p)); }
+
+bool sharedScenesPresent() { return std::filesystem::exists(std::filesystem::path(GI_SHARED_DIR) / "scenes"); }
+
+TEST(RenderCLI, EveryShippedPresetRenders) {
+    for (const auto& entry : std::filesystem::directory_iterator(GI_PRESET_DIR)) {
+        if (entry.path().extension() != ".json") continue;
+        if (entry.path().filename() == "sponza.json" && !sharedScenesPresent()) continue;
+        auto out = test::tempDir() / entry.path().stem();
+        auto r = test::runCommand(render(entry.path().string() + " --out " + out.string() + " --width 192 --height 128"));
+        ASSERT_EQ(r.exitCode, 0) << entry.path() << "\n" << r.output;
+        ImageRGBA8 img = readImage8(out / "image.png");
+        EXPECT_EQ(img.width, 192);
+        EXPECT_EQ(img.height, 128);
+        EXPECT_TRUE(std::filesystem::exists(out / "image.exr"));
+        json stats = readJSON(out / "stats.json");
+        ASSERT_TRUE(stats["passes"].is_array()) << stats.dump();
+        EXPECT_EQ(stats["passes"].size(), 5u);
+        for (auto& p : stats["passes"]) {
+            EXPECT_TRUE(p["name"].is_string());
+            EXPECT_TRUE(p["gpuMs"].is_number());
+        }
+        EXPECT_TRUE(stats["gpuMsTotal"].is_number());
+        EXPECT_GT(stats["memoryBytes"].get<double>(), 0.0);
+        EXPECT_FALSE(stats["renderer"].get<std::string>().empty());
+        EXPECT_EQ(stats["settings"]["schemaVersion"], 1);
+        double mean = 0;
+        for (size_t i = 0; i < img.rgba.size(); i += 4) mean += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
+        EXPECT_GT(mean / (img.rgba.size() / 4 * 3), 8.0) << entry.path() << " renders (nearly) black";
+    }
+}
+
+TEST(RenderCLI, NoInputRendersTheBuiltInDefault) {
+    auto out = test::tempDir();
+    auto r = test::runCommand(render("--out " + out.string() + " --width 128 --height 128"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto r2 = test::runCommand(render(std::string(GI_PRESET_DIR) + "/default.json --out " + (out / "file").string() +
+                                      " --width 128 --height 128"));
+    ASSERT_EQ(r2.exitCode, 0) << r2.output;
+    EXPECT_EQ(readImage8(out / "image.png").rgba, readImage8(out / "file" / "image.png").rgba);
+}
+
+TEST(RenderCLI, SameInputSamePixels) {
+    auto out = test::tempDir();
+    std::string preset = std::string(GI_PRESET_DIR) + "/basic.json";
+    for (const char* d : {"a", "b"}) {
+        auto r = test::runCommand(render(preset + " --out " + (out / d).string() + " --width 160 --height 120 --frames 2"));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    EXPECT_EQ(readImage8(out / "a" / "image.png").rgba, readImage8(out / "b" / "image.png").rgba);
+}
+
+TEST(RenderCLI, ViewsAndSetOverrides) {
+    auto out = test::tempDir();
+    auto r = test::runCommand(render(std::string(GI_PRESET_DIR) + "/basic.json --out " + out.string() +
+                                     " --width 128 --height 96 --views --set toneMap.exposure=1.5 --set render.shadowMapSize=512"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* v : {"final", "albedo", "normal", "depth", "roughnessMetallic", "emissive", "indirect", "shadow0"})
+        EXPECT_TRUE(std::filesystem::exists(out / "views" / (std::string(v) + ".png"))) << v;
+    json stats = readJSON(out / "stats.json");
+    EXPECT_FLOAT_EQ(stats["settings"]["toneMap"]["exposure"].get<float>(), 1.5f);
+    EXPECT_EQ(stats["settings"]["render"]["shadowMapSize"], 512);
+}
+
+TEST(RenderCLI, GLTFInputWithItsCamera) {
+    if (!sharedScenesPresent()) GTEST_SKIP() << "../shared/scenes is not beside this checkout";
+    auto out = test::tempDir();
+    auto file = std::filesystem::path(GI_SHARED_DIR) / "scenes" / "water_bottle" / "WaterBottle.gltf";
+    auto r = test::runCommand(render(file.string() + " --out " + out.string() + " --width 128 --height 128"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("default sun"), std::string::npos) << "a scene without lights should say so";
+    auto bad = test::runCommand(render(file.string() + " --camera 3 --out " + out.string()));
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find("camera.sceneCamera"), std::string::npos) << bad.output;
+}
+
+TEST(RenderCLI, ListSettings) {
+    auto r = test::runCommand(render("--list-settings --json"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    json list = json::parse(r.output);
+    ASSERT_TRUE(list.is_array());
+    bool found = false;
+    for (auto& s : list) {
+        EXPECT_TRUE(s.contains("key") && s.contains("type") && s.contains("default") && s.contains("description"));
+        found |= s["key"] == "render.shadowMapSize" && s["min"] == 64 && s["max"] == 8192;
+    }
+    EXPECT_TRUE(found);
+    auto text = test::runCommand(render("--list-settings"));
+    EXPECT_EQ(text.exitCode, 0);
+    EXPECT_NE(text.output.find("toneMap.op"), std::string::npos);
+}
+
+TEST(RenderCLI, BadInputGivesOneLineErrorAndNonZeroExit) {
+    auto dir = test::tempDir();
+    std::ofstream(dir / "broken.json") << "{\"schemaVersion\": 1, \"render\": {\"shadowMapSize\": 99999}}";
+    std::ofstream(dir / "typo.json") << "{\"schemaVersion\": 1, \"camera\": {\"fov\": 30}}";
+    std::ofstream(dir / "bad.gltf") << "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": 7}";
+    std::ofstream(dir / "notjson.json") << "{ nope";
+    std::ofstream(dir / "missing_scene.json") << "{\"schemaVersion\": 1, \"scene\": \"nowhere/none.gltf\"}";
+    struct Case {
+        std::string args, expect;
+    };
+    std::string out = " --out " + (dir / "out").string();
+    std::vector<Case> cases = {
+        {(dir / "broken.json").string() + out, "render.shadowMapSize"},
+        {(dir / "typo.json").string() + out, "did you mean 'camera.fovY'"},
+        {(dir / "bad.gltf").string() + out, "bad.gltf"},
+        {(dir / "notjson.json").string() + out, "invalid JSON"},
+        {(dir / "missing_scene.json").string() + out, "nowhere/none.gltf"},
+        {(dir / "nothere.json").string() + out, "nothere.json"},
+        {"--set render.shadowMapSize=-1" + out, "render.shadowMapSize"},
+        {"--set render.shadowMapSize=8192 --set render.memoryBudgetMB=64" + out, "render.memoryBudgetMB"},
+        {"--set lights.0.intensity=1" + out, "lights.0.intensity"},
+        {"--width -5" + out, "width"},
+        {"--width 100000" + out, "width"},
+        {std::string(GI_PRESET_DIR) + "/default.json", "--out"},
+    };
+    for (const auto& c : cases) {
+        auto r = test::runCommand(render(c.args));
+        EXPECT_NE(r.exitCode, 0) << c.args;
+        EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+        std::string trimmed = r.output;
+        while (!trimmed.empty() && trimmed.back() == '\n') trimmed.pop_back();
+        EXPECT_EQ(trimmed.find('\n'), std::string::npos) << "not one line: " << r.output;
+    }
+}
+
+}  // namespace
+}  // namespace gi
