@@ -81,10 +81,7 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "gi-render: warning: %s has no lights and the preset names none; a default sun is used\n",
                      scene.name.c_str());
     gi::FrameSettings frame = gi::frameSettings(preset, scene, width, height);
-    // Refuse before any GL allocation (the scene estimate counts vertices, indices and textures).
-    size_t sceneBytes = scene.vertices.size() * sizeof(gi::Vertex) + scene.indices.size() * 4;
-    for (auto& t : scene.textures) sceneBytes += t.rgba.size() * 4 / 3;
-    gi::Renderer::checkBudget(frame, sceneBytes);
+    gi::Renderer::checkBudget(frame, scene);  // refuse before any GL allocation
 
     fs::create_directories(outDir);
     gi::EGLContextHeadless context;

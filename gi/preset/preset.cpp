@@ -86,7 +86,8 @@ Preset loadPreset(const std::filesystem::path& path) {
     if (j.is_discarded()) {
         // Parse again with exceptions on to get the position of the first error.
         try {
-            (void)json::parse(text);
+            json again = json::parse(text);
+            (void)again;
         } catch (const json::parse_error& e) {
             throw Error(path.string() + ": invalid JSON at byte " + std::to_string(e.byte));
         }
@@ -168,7 +169,8 @@ Preset presetForInput(const std::filesystem::path& input, int sceneCamera) {
     if (ext == ".gltf" || ext == ".glb") {
         Preset p;
         p.header.scene = std::filesystem::absolute(input).string();
-        p.camera.sceneCamera = sceneCamera;
+        // The file's first camera (loadScene adds one framing the scene when it has none).
+        p.camera.sceneCamera = std::max(sceneCamera, 0);
         p.lightsFromScene = true;
         return p;
     }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gi/preset/reflect.h"
+#include "gi/reference/reference_settings.h"
 #include "gi/render/render_settings.h"
 #include "gi/scene/scene_settings.h"
 
@@ -39,6 +40,7 @@ struct Preset {
     bool lightsFromScene = true;        // no "lights" key: take the scene's own lights
     RenderSettings render;
     ToneMapSettings toneMap;
+    ReferenceSettings reference;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)
 
     // Every fixed settings section, for code that treats them alike.
@@ -47,6 +49,7 @@ struct Preset {
         f(camera);
         f(render);
         f(toneMap);
+        f(reference);
     }
 };
 
@@ -66,7 +69,8 @@ json settingInfoToJson(const SettingInfo& s);
 struct Scene;
 
 // A preset for any runner input: a preset file as it is, or a glTF file rendered with its own
-// cameras (`sceneCamera`, -1 to frame the scene) and lights. Throws gi::Error.
+// cameras (`sceneCamera`; -1 takes the first, or one framing the scene when it has none) and lights.
+// Throws gi::Error.
 Preset presetForInput(const std::filesystem::path& input, int sceneCamera);
 // Resolves the preset against a loaded scene: the scene's lights when the preset has none (a
 // default sun when the scene has none either), the

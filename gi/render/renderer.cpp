@@ -11,19 +11,6 @@ namespace gi {
 
 using namespace shared;
 
-glm::mat4 viewMatrix(const CameraSettings& c) {
-    glm::vec3 f = c.target - c.eye;
-    if (glm::length(f) < 1e-8f) f = glm::vec3(0, 0, -1);
-    glm::vec3 up = c.up;
-    if (glm::length(glm::cross(glm::normalize(f), up)) < 1e-4f) up = std::abs(f.y) > 0.9f * glm::length(f) ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-    return glm::lookAt(c.eye, c.eye + f, up);
-}
-
-glm::mat4 projectionMatrix(const CameraSettings& c, float aspect) {
-    float far = std::max(c.far, c.near * 1.001f);
-    return glm::perspective(glm::radians(c.fovY), aspect, c.near, far);
-}
-
 // ---------------------------------------------------------------------------------------------
 
 GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.materials), mBounds(scene.bounds) {
@@ -50,6 +37,12 @@ GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.m
         mBytes += tex.bytes();
         mTextures.push_back(std::move(tex));
     }
+}
+
+size_t GPUScene::estimateBytes(const Scene& scene) {
+    size_t bytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
+    for (const Texture& t : scene.textures) bytes += t.rgba.size() * 4 / 3;  // the mip chain adds a third
+    return bytes;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
 #include "gi/render/render_settings.h"
+#include "gi/scene/camera.h"
 #include "gi/scene/scene.h"
 
 #include <memory>
@@ -52,6 +53,9 @@ public:
                            reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4));
         }
     }
+    // Bytes a scene will take on the GPU (vertices, indices, textures with their mips), known
+    // before upload so budgets can refuse it first.
+    static size_t estimateBytes(const Scene& scene);
     GLuint texture(int index) const { return index >= 0 ? mTextures[index].id() : 0; }
     size_t memoryBytes() const { return mBytes; }
     const Bounds& bounds() const { return mBounds; }
@@ -78,6 +82,7 @@ public:
     static size_t estimateFrameBytes(const FrameSettings& fs);
     // Throws gi::Error when the settings plus the scene would exceed render.memoryBudgetMB.
     static void checkBudget(const FrameSettings& fs, size_t sceneBytes);
+    static void checkBudget(const FrameSettings& fs, const Scene& scene) { checkBudget(fs, GPUScene::estimateBytes(scene)); }
 
     void render(const FrameSettings& fs);
 
@@ -143,9 +148,5 @@ private:
     void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj);
     void renderToneMap(const FrameSettings& fs);
 };
-
-// Camera matrices from settings and the aspect ratio.
-glm::mat4 viewMatrix(const CameraSettings& c);
-glm::mat4 projectionMatrix(const CameraSettings& c, float aspect);
 
 }  // namespace gi

@@ -1,0 +1,77 @@
+// gi-editor: tune a GI Workbench preset live in a window (GLFW + Dear ImGui). With --screenshot
+// it renders a few frames, writes the whole window with its panels to a PNG and exits, so tests
+// can run it under Xvfb.
+#include "gi/gl/debug.h"
+#include "gi/render/image_io.h"
+#include "ui/editor.h"
+#include "ui/window.h"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+
+namespace {
+
+int run(int argc, char** argv) {
+    CLI::App app{"gi-editor: tune GI Workbench presets live"};
+    gi::ui::EditorOptions options;
+    std::string preset, screenshot;
+    int frames = 0;
+    app.add_option("--preset", preset, "Preset (.json) or glTF file; default: presets/default.json");
+    app.add_option("--frames", frames, "Render this many frames, then exit (default with --screenshot: 3)")->check(CLI::Range(1, 100000));
+    app.add_option("--screenshot", screenshot, "After the last frame, write the whole window to this PNG and exit");
+    app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(64, 16384));
+    app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(64, 16384));
+    app.add_option("--view", options.view, "Debug view the buffer previewer shows first (e.g. depth, shadow0)");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    options.preset = preset;
+    if (!screenshot.empty() && frames == 0) frames = 3;
+
+    gi::ui::Window window(options.width, options.height, "GI Workbench");
+    gi::ui::Editor editor(options);
+    std::string title;
+    auto last = std::chrono::steady_clock::now();
+    for (int frame = 1; !window.shouldClose(); ++frame) {
+        auto now = std::chrono::steady_clock::now();
+        float dt = std::chrono::duration<float>(now - last).count();
+        last = now;
+
+        window.beginFrame();
+        int width, height;
+        window.framebufferSize(width, height);
+        editor.frame(width, height, dt);
+        window.renderUI();
+        bool done = frames > 0 && frame >= frames;
+        if (done && !screenshot.empty()) {
+            std::vector<uint8_t> pixels = window.readBackBuffer(width, height);
+            gi::writePNG(screenshot, width, height, pixels);
+            std::printf("%s\n", screenshot.c_str());
+        }
+        window.swap();
+        if (done) break;
+        if (editor.title() != title) window.setTitle(title = editor.title());
+    }
+    // Frame-limited runs are tests: a GL error fails them, as it fails gi-render.
+    if (frames > 0 && gi::gl::debugErrorCount() > 0)
+        throw gi::Error("OpenGL reported " + std::to_string(gi::gl::debugErrorCount()) + " errors (see above)");
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const gi::ui::NoDisplayError& e) {
+        std::fprintf(stderr, "gi-editor: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gi-editor: %s\n", e.what());
+        return 1;
+    }
+}

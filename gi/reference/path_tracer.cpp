@@ -1,0 +1,574 @@
+#include "gi/reference/path_tracer.h"
+
+#include "gi/scene/camera.h"
+#include "gi/util/error.h"
+
+#include <embree3/rtcore.h>
+#include <glm/gtc/constants.hpp>
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi {
+
+namespace {
+
+constexpr float kPi = glm::pi<float>();
+
+// PCG32 (O'Neill 2014): small state, good quality, cheap to seed per sample.
+struct PCG32 {
+    uint64_t state = 0, inc = 1;
+    PCG32(uint64_t seed, uint64_t stream) {
+        inc = (stream << 1u) | 1u;
+        next();
+        state += seed;
+        next();
+    }
+    uint32_t next() {
+        uint64_t old = state;
+        state = old * 6364136223846793005ULL + inc;
+        uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+        uint32_t rot = uint32_t(old >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
+    }
+    float uniform() { return float(next() >> 8) * 0x1p-24f; }
+};
+
+uint64_t mix64(uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdULL;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ULL;
+    x ^= x >> 33;
+    return x;
+}
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float maxComponent(const glm::vec3& c) { return std::max(c.r, std::max(c.g, c.b)); }
+
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+// The raster pipeline's GGX terms (shaders/common/brdf.glsl), in C++.
+float D_GGX(float NoH, float a) {
+    float a2 = a * a;
+    float d = NoH * NoH * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * d * d);
+}
+float V_SmithGGXCorrelated(float NoV, float NoL, float a) {
+    float a2 = a * a;
+    float gv = NoL * std::sqrt(NoV * NoV * (1.0f - a2) + a2);
+    float gl = NoV * std::sqrt(NoL * NoL * (1.0f - a2) + a2);
+    return 0.5f / std::max(gv + gl, 1e-7f);
+}
+glm::vec3 F_Schlick(float VoH, const glm::vec3& f0) { return f0 + (1.0f - f0) * std::pow(1.0f - VoH, 5.0f); }
+float G1_GGX(float NoV, float a) {
+    float a2 = a * a;
+    return 2.0f * NoV / (NoV + std::sqrt(a2 + (1.0f - a2) * NoV * NoV));
+}
+
+// An orthonormal basis around n (Duff et al. 2017).
+void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
+    float sign = std::copysign(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float bb = n.x * n.y * a;
+    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x);
+    b = glm::vec3(bb, sign + n.y * n.y * a, -n.y);
+}
+
+// Surface properties at a hit, everything in world space.
+struct Surface {
+    glm::vec3 baseColor{1.0f};
+    float metallic = 0.0f;
+    float alpha = 1.0f;  // GGX alpha
+    bool specular = true;
+};
+
+struct BSDFSample {
+    glm::vec3 L{0.0f};
+    glm::vec3 f{0.0f};
+    float pdf = 0.0f;
+};
+
+class BSDF {
+public:
+    BSDF(const Surface& s, const glm::vec3& N, const glm::vec3& V) : mS(s), mN(N), mV(V) {
+        basis(N, mT, mB);
+        mNoV = std::max(glm::dot(N, V), 1e-4f);
+        mF0 = glm::mix(glm::vec3(0.04f), s.baseColor, s.metallic);
+        mDiffuse = s.baseColor * (1.0f - s.metallic);
+        if (!s.specular) {
+            mPSpec = 0.0f;
+        } else {
+            float spec = luminance(F_Schlick(mNoV, mF0));
+            float diff = luminance(mDiffuse);
+            mPSpec = diff <= 0.0f ? 1.0f : std::clamp(spec / (spec + diff), 0.1f, 0.9f);
+        }
+    }
+
+    glm::vec3 eval(const glm::vec3& L) const {
+        float NoL = glm::dot(mN, L);
+        if (NoL <= 0.0f) return glm::vec3(0.0f);
+        glm::vec3 f = mDiffuse / kPi;
+        if (mS.specular) {
+            glm::vec3 H = glm::normalize(mV + L);
+            float NoH = std::max(glm::dot(mN, H), 0.0f);
+            float VoH = std::max(glm::dot(mV, H), 0.0f);
+            f += D_GGX(NoH, mS.alpha) * V_SmithGGXCorrelated(mNoV, NoL, mS.alpha) * F_Schlick(VoH, mF0);
+        }
+        return f;
+    }
+
+    float pdf(const glm::vec3& L) const {
+        float NoL = glm::dot(mN, L);
+        if (NoL <= 0.0f) return 0.0f;
+        float p = (1.0f - mPSpec) * NoL / kPi;
+        if (mPSpec > 0.0f) {
+            glm::vec3 H = glm::normalize(mV + L);
+            float NoH = std::max(glm::dot(mN, H), 0.0f);
+            p += mPSpec * G1_GGX(mNoV, mS.alpha) * D_GGX(NoH, mS.alpha) / (4.0f * mNoV);
+        }
+        return p;
+    }
+
+    BSDFSample sample(PCG32& rng) const {
+        BSDFSample s;
+        float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        if (u0 < mPSpec) {
+            // Visible-normal sampling of GGX (Heitz 2018) in the local frame (N = z).
+            glm::vec3 v(glm::dot(mV, mT), glm::dot(mV, mB), glm::dot(mV, mN));
+            float a = mS.alpha;
+            glm::vec3 vh = glm::normalize(glm::vec3(a * v.x, a * v.y, std::max(v.z, 1e-4f)));
+            float lensq = vh.x * vh.x + vh.y * vh.y;
+            glm::vec3 t1 = lensq > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1, 0, 0);
+            glm::vec3 t2 = glm::cross(vh, t1);
+            float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+            float p1 = r * std::cos(phi), p2 = r * std::sin(phi);
+            float sw = 0.5f * (1.0f + vh.z);
+            p2 = (1.0f - sw) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + sw * p2;
+            glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+            glm::vec3 h = glm::normalize(glm::vec3(a * nh.x, a * nh.y, std::max(0.0f, nh.z)));
+            glm::vec3 H = h.x * mT + h.y * mB + h.z * mN;
+            s.L = glm::reflect(-mV, H);
+        } else {
+            // Cosine-weighted hemisphere.
+            float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+            float x = r * std::cos(phi), y = r * std::sin(phi), z = std::sqrt(std::max(0.0f, 1.0f - u1));
+            s.L = x * mT + y * mB + z * mN;
+        }
+        s.pdf = pdf(s.L);
+        s.f = s.pdf > 0.0f ? eval(s.L) : glm::vec3(0.0f);
+        return s;
+    }
+
+private:
+    Surface mS;
+    glm::vec3 mN, mV, mT, mB, mF0, mDiffuse;
+    float mNoV, mPSpec;
+};
+
+float powerHeuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+}  // namespace
+
+struct PathTracer::Impl {
+    Scene scene;  // a copy: the editor may load another scene while a reference renders
+    RTCDevice device = nullptr;
+    RTCScene rtc = nullptr;
+    struct GeometryData {
+        const Impl* impl;
+        int draw;
+    };
+    std::vector<GeometryData> geometries;  // by Embree geometry ID
+    struct Emitter {
+        int triangle;  // index into scene.indices / 3
+        int material;
+        float area;
+    };
+    std::vector<Emitter> emitters;
+    std::vector<float> emitterCdf;  // normalised, by power
+    float emitterPower = 0.0f;      // sum of area * luminance
+    std::vector<int> triangleMaterial;
+    float srgbLut[256];
+
+    glm::vec4 sampleTexture(int texture, glm::vec2 uv) const {
+        const Texture& t = scene.textures[texture];
+        float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f;
+        float y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
+        int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+        float fx = x - float(x0), fy = y - float(y0);
+        auto texel = [&](int xi, int yi) {
+            xi = ((xi % t.width) + t.width) % t.width;
+            yi = ((yi % t.height) + t.height) % t.height;
+            const uint8_t* p = &t.rgba[(size_t(yi) * t.width + xi) * 4];
+            return glm::vec4(srgbLut[p[0]], srgbLut[p[1]], srgbLut[p[2]], float(p[3]) / 255.0f);
+        };
+        return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+    }
+
+    glm::vec2 uvAt(int triangle, float u, float v) const {
+        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
+        return (1.0f - u - v) * scene.vertices[idx[0]].uv + u * scene.vertices[idx[1]].uv + v * scene.vertices[idx[2]].uv;
+    }
+
+    glm::vec4 baseColorAt(const Material& m, int triangle, float u, float v) const {
+        glm::vec4 c = m.baseColor;
+        if (m.baseColorTexture >= 0) c *= sampleTexture(m.baseColorTexture, uvAt(triangle, u, v));
+        return c;
+    }
+
+    static void alphaFilter(const RTCFilterFunctionNArguments* args) {
+        const auto* g = static_cast<const GeometryData*>(args->geometryUserPtr);
+        const Impl& impl = *g->impl;
+        const Draw& d = impl.scene.draws[g->draw];
+        const Material& m = impl.scene.materials[d.material];
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] != -1) continue;
+            int tri = int(d.firstIndex / 3 + RTCHitN_primID(args->hit, args->N, i));
+            float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+            if (impl.baseColorAt(m, tri, u, v).a < m.alphaCutoff) args->valid[i] = 0;
+        }
+    }
+
+    explicit Impl(const Scene& s) : scene(s) {
+        for (int i = 0; i < 256; ++i) srgbLut[i] = srgbToLinear(float(i) / 255.0f);
+        device = rtcNewDevice(nullptr);
+        if (!device) throw Error("Embree: cannot create a device");
+        rtc = rtcNewScene(device);
+        rtcSetSceneBuildQuality(rtc, RTC_BUILD_QUALITY_HIGH);
+        geometries.reserve(scene.draws.size());
+        triangleMaterial.assign(scene.triangleCount(), 0);
+        for (size_t di = 0; di < scene.draws.size(); ++di) {
+            const Draw& d = scene.draws[di];
+            const Material& m = scene.materials[d.material];
+            RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            uint32_t triCount = d.indexCount / 3;
+            // Each draw gets its own compact vertex list so Embree's buffers stay small.
+            std::vector<uint32_t> used(scene.indices.begin() + d.firstIndex, scene.indices.begin() + d.firstIndex + d.indexCount);
+            std::sort(used.begin(), used.end());
+            used.erase(std::unique(used.begin(), used.end()), used.end());
+            std::vector<uint32_t> local(d.indexCount);
+            for (uint32_t k = 0; k < d.indexCount; ++k)
+                local[k] = uint32_t(std::lower_bound(used.begin(), used.end(), scene.indices[d.firstIndex + k]) - used.begin());
+            std::vector<glm::vec3> positions;
+            for (uint32_t vi : used) positions.push_back(scene.vertices[vi].position);
+            auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                    3 * sizeof(float), positions.size()));
+            for (size_t k = 0; k < positions.size(); ++k) {
+                vb[k * 3] = positions[k].x;
+                vb[k * 3 + 1] = positions[k].y;
+                vb[k * 3 + 2] = positions[k].z;
+            }
+            auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                       3 * sizeof(uint32_t), triCount));
+            std::copy(local.begin(), local.end(), ib);
+            geometries.push_back({this, int(di)});
+            if (m.alphaMode == AlphaMode::Mask) {
+                rtcSetGeometryUserData(geom, &geometries.back());
+                rtcSetGeometryIntersectFilterFunction(geom, alphaFilter);
+                rtcSetGeometryOccludedFilterFunction(geom, alphaFilter);
+            }
+            rtcCommitGeometry(geom);
+            unsigned id = rtcAttachGeometry(rtc, geom);
+            GI_ASSERT(id == di, "Embree geometry IDs follow the draws");
+            rtcReleaseGeometry(geom);
+            for (uint32_t t = 0; t < triCount; ++t) triangleMaterial[d.firstIndex / 3 + t] = d.material;
+
+            if (luminance(m.emissive) > 0.0f) {
+                for (uint32_t t = 0; t < triCount; ++t) {
+                    int tri = int(d.firstIndex / 3 + t);
+                    const uint32_t* idx = &scene.indices[size_t(tri) * 3];
+                    glm::vec3 p0 = scene.vertices[idx[0]].position, p1 = scene.vertices[idx[1]].position,
+                              p2 = scene.vertices[idx[2]].position;
+                    float area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+                    if (area <= 0.0f) continue;
+                    emitters.push_back({tri, d.material, area});
+                    emitterPower += area * luminance(m.emissive);
+                    emitterCdf.push_back(emitterPower);
+                }
+            }
+        }
+        for (float& c : emitterCdf) c /= emitterPower;
+        rtcCommitScene(rtc);
+    }
+
+    ~Impl() {
+        if (rtc) rtcReleaseScene(rtc);
+        if (device) rtcReleaseDevice(device);
+    }
+
+    struct Hit {
+        bool valid = false;
+        float t = 0.0f;
+        int triangle = 0;
+        int material = 0;
+        float u = 0.0f, v = 0.0f;
+        glm::vec3 Ng{0.0f};
+    };
+
+    Hit intersect(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh{};
+        rh.ray.org_x = o.x;
+        rh.ray.org_y = o.y;
+        rh.ray.org_z = o.z;
+        rh.ray.dir_x = d.x;
+        rh.ray.dir_y = d.y;
+        rh.ray.dir_z = d.z;
+        rh.ray.tnear = tnear;
+        rh.ray.tfar = tfar;
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(rtc, &ctx, &rh);
+        Hit h;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+        const Draw& dr = scene.draws[rh.hit.geomID];
+        h.valid = true;
+        h.t = rh.ray.tfar;
+        h.triangle = int(dr.firstIndex / 3 + rh.hit.primID);
+        h.material = dr.material;
+        h.u = rh.hit.u;
+        h.v = rh.hit.v;
+        h.Ng = glm::normalize(glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+        return h;
+    }
+
+    bool occluded(const glm::vec3& o, const glm::vec3& d, float tfar) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRay r{};
+        r.org_x = o.x;
+        r.org_y = o.y;
+        r.org_z = o.z;
+        r.dir_x = d.x;
+        r.dir_y = d.y;
+        r.dir_z = d.z;
+        r.tnear = 0.0f;
+        r.tfar = tfar;
+        r.mask = 0xFFFFFFFFu;
+        rtcOccluded1(rtc, &ctx, &r);
+        return r.tfar < 0.0f;
+    }
+
+    glm::vec3 shadingNormal(int triangle, float u, float v) const {
+        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
+        glm::vec3 n = (1.0f - u - v) * scene.vertices[idx[0]].normal + u * scene.vertices[idx[1]].normal +
+                      v * scene.vertices[idx[2]].normal;
+        float len = glm::length(n);
+        return len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+    }
+
+    // Offset along the geometric normal, scaled with the coordinates' magnitude so large scenes
+    // (Sponza) and tiny ones (Avocado) both escape their own surface.
+    static glm::vec3 offset(const glm::vec3& p, const glm::vec3& ng) {
+        float scale = 1e-4f * (1.0f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+        return p + ng * scale;
+    }
+
+    // Light from one punctual light arriving at P along direction L (unoccluded), as in light.frag.
+    static glm::vec3 punctual(const LightSettings& l, const glm::vec3& P, glm::vec3& L, float& dist) {
+        glm::vec3 E = l.color * l.intensity;
+        glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+        if (l.type == LightType::Directional) {
+            L = -dir;
+            dist = std::numeric_limits<float>::infinity();
+            return E;
+        }
+        glm::vec3 toLight = l.position - P;
+        dist = glm::length(toLight);
+        L = toLight / std::max(dist, 1e-6f);
+        float atten = 1.0f / std::max(dist * dist, 1e-8f);
+        if (l.range > 0.0f) {
+            float r = dist / l.range;
+            float w = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
+            atten *= w * w;
+        }
+        if (l.type == LightType::Spot) {
+            float cosOuter = std::cos(glm::radians(l.outerConeDeg));
+            float cosInner = std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg)));
+            float cd = glm::dot(-L, dir);
+            float t = std::clamp((cd - cosOuter) / std::max(cosInner - cosOuter, 1e-6f), 0.0f, 1.0f);
+            atten *= t * t * (3.0f - 2.0f * t);
+        }
+        return E * atten;
+    }
+
+    glm::vec3 radiance(glm::vec3 o, glm::vec3 d, float tnear, const FrameSettings& fs, const ReferenceSettings& rs,
+                       PCG32& rng, uint64_t& rays) const {
+        const bool countDirect = rs.mode != ReferenceMode::Indirect;
+        const bool countIndirect = rs.mode != ReferenceMode::Direct;
+        glm::vec3 L(0.0f), beta(1.0f);
+        float prevPdf = 0.0f;
+        for (int bounce = 0;; ++bounce) {
+            Hit h = intersect(o, d, tnear, std::numeric_limits<float>::infinity());
+            ++rays;
+            if (!h.valid) break;
+            tnear = 0.0f;
+            glm::vec3 P = o + d * h.t;
+            const Material& m = scene.materials[h.material];
+            glm::vec3 Ns = shadingNormal(h.triangle, h.u, h.v);
+            glm::vec3 V = -d;
+
+            // Emission, on the side the shading normal points to.
+            if (luminance(m.emissive) > 0.0f && glm::dot(Ns, V) > 0.0f) {
+                bool counts = bounce <= 1 ? countDirect : countIndirect;
+                if (counts) {
+                    float w = 1.0f;
+                    if (bounce > 0) {
+                        float cosLight = glm::dot(Ns, V);
+                        float pdfLight = luminance(m.emissive) / emitterPower * h.t * h.t / cosLight;
+                        w = powerHeuristic(prevPdf, pdfLight);
+                    }
+                    L += beta * m.emissive * w;
+                }
+            }
+            if (bounce >= rs.maxBounces) break;
+            if (rs.mode == ReferenceMode::Direct && bounce >= 1) break;
+
+            // Two-sided shading: normals face the incoming ray.
+            glm::vec3 Ng = glm::dot(h.Ng, V) < 0.0f ? -h.Ng : h.Ng;
+            if (glm::dot(Ns, Ng) < 0.0f) Ns = -Ns;
+            glm::vec4 base = baseColorAt(m, h.triangle, h.u, h.v);
+            Surface s;
+            s.baseColor = glm::vec3(base);
+            s.metallic = m.metallic;
+            s.alpha = std::max(m.roughness * m.roughness, 0.002f);
+            s.specular = fs.render.specular;
+            BSDF bsdf(s, Ns, V);
+            glm::vec3 Po = offset(P, Ng);
+
+            bool neeCounts = bounce == 0 ? countDirect : countIndirect;
+            if (neeCounts) {
+                for (const LightSettings& light : fs.lights) {
+                    glm::vec3 Ldir;
+                    float dist;
+                    glm::vec3 E = punctual(light, P, Ldir, dist);
+                    if (maxComponent(E) <= 0.0f) continue;
+                    float NoL = glm::dot(Ns, Ldir);
+                    if (NoL <= 0.0f || glm::dot(Ng, Ldir) <= 0.0f) continue;
+                    glm::vec3 f = bsdf.eval(Ldir);
+                    if (maxComponent(f) <= 0.0f) continue;
+                    ++rays;
+                    float tfar = std::isinf(dist) ? dist : dist * (1.0f - 1e-4f);
+                    if (light.castShadows && occluded(Po, Ldir, tfar)) continue;
+                    L += beta * f * NoL * E;
+                }
+                if (!emitters.empty()) L += beta * sampleEmitter(P, Po, Ns, Ng, bsdf, rng, rays);
+            }
+
+            BSDFSample bs = bsdf.sample(rng);
+            float NoL = glm::dot(Ns, bs.L);
+            if (bs.pdf <= 0.0f || NoL <= 0.0f || glm::dot(Ng, bs.L) <= 0.0f) break;
+            beta *= bs.f * NoL / bs.pdf;
+            if (bounce + 1 >= rs.rouletteDepth) {
+                float q = std::min(maxComponent(beta), 0.95f);
+                if (rng.uniform() >= q) break;
+                beta /= q;
+            }
+            prevPdf = bs.pdf;
+            o = Po;
+            d = bs.L;
+        }
+        return L;
+    }
+
+    glm::vec3 sampleEmitter(const glm::vec3& P, const glm::vec3& Po, const glm::vec3& Ns, const glm::vec3& Ng,
+                            const BSDF& bsdf, PCG32& rng, uint64_t& rays) const {
+        float u = rng.uniform();
+        size_t i = size_t(std::lower_bound(emitterCdf.begin(), emitterCdf.end(), u) - emitterCdf.begin());
+        i = std::min(i, emitters.size() - 1);
+        const Emitter& e = emitters[i];
+        const uint32_t* idx = &scene.indices[size_t(e.triangle) * 3];
+        float su = std::sqrt(rng.uniform()), v = rng.uniform();
+        float b1 = 1.0f - su, b2 = v * su;  // barycentrics of vertices 1 and 2 (Embree's u, v)
+        glm::vec3 p0 = scene.vertices[idx[0]].position, p1 = scene.vertices[idx[1]].position, p2 = scene.vertices[idx[2]].position;
+        glm::vec3 Pl = (1.0f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
+        glm::vec3 Nl = shadingNormal(e.triangle, b1, b2);
+        glm::vec3 toL = Pl - P;
+        float dist2 = glm::dot(toL, toL);
+        if (dist2 <= 0.0f) return glm::vec3(0.0f);
+        float dist = std::sqrt(dist2);
+        glm::vec3 Ldir = toL / dist;
+        float cosLight = glm::dot(Nl, -Ldir);
+        float NoL = glm::dot(Ns, Ldir);
+        if (cosLight <= 0.0f || NoL <= 0.0f || glm::dot(Ng, Ldir) <= 0.0f) return glm::vec3(0.0f);
+        const Material& m = scene.materials[e.material];
+        float pdfLight = luminance(m.emissive) / emitterPower * dist2 / cosLight;
+        glm::vec3 f = bsdf.eval(Ldir);
+        if (maxComponent(f) <= 0.0f) return glm::vec3(0.0f);
+        ++rays;
+        if (occluded(Po, Ldir, dist * (1.0f - 1e-3f))) return glm::vec3(0.0f);
+        float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
+        return f * NoL * m.emissive * w / pdfLight;
+    }
+};
+
+PathTracer::PathTracer(const Scene& scene) : mImpl(std::make_unique<Impl>(scene)) {}
+PathTracer::~PathTracer() = default;
+
+bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int firstSample, int count,
+                       std::vector<double>& sum, const std::atomic<bool>* cancel) const {
+    const int w = fs.width, h = fs.height;
+    if (sum.empty()) sum.assign(size_t(w) * h * 3, 0.0);
+    GI_ASSERT(sum.size() == size_t(w) * h * 3, "accumulation buffer size");
+    const glm::mat4 view = viewMatrix(fs.camera);
+    const glm::mat4 invViewProj = glm::inverse(projectionMatrix(fs.camera, float(w) / float(h)) * view);
+    const glm::vec3 forward = -glm::vec3(glm::inverse(view)[2]);
+    std::atomic<bool> cancelled{false};
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
+        if (cancel && cancel->load()) {
+            cancelled = true;
+            return;
+        }
+        uint64_t rays = 0;
+        for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+            for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                size_t pixel = size_t(y) * w + x;
+                glm::dvec3 acc(0.0);
+                for (int s = firstSample; s < firstSample + count; ++s) {
+                    PCG32 rng(mix64(pixel * 0x9E3779B97F4A7C15ULL + uint64_t(rs.seed)), uint64_t(s));
+                    float jx = rng.uniform(), jy = rng.uniform();
+                    glm::vec2 ndc(2.0f * (float(x) + jx) / float(w) - 1.0f, 1.0f - 2.0f * (float(y) + jy) / float(h));
+                    glm::vec4 pn = invViewProj * glm::vec4(ndc, -1.0f, 1.0f);
+                    glm::vec4 pf = invViewProj * glm::vec4(ndc, 1.0f, 1.0f);
+                    glm::vec3 dir = glm::normalize(glm::vec3(pf) / pf.w - glm::vec3(pn) / pn.w);
+                    float tnear = fs.camera.near / std::max(glm::dot(dir, forward), 1e-4f);
+                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, rng, rays);
+                    if (std::isfinite(L.x + L.y + L.z)) acc += glm::dvec3(L);
+                }
+                sum[pixel * 3] += acc.x;
+                sum[pixel * 3 + 1] += acc.y;
+                sum[pixel * 3 + 2] += acc.z;
+            }
+        mRays += rays;
+    });
+    return !cancelled;
+}
+
+RadianceImage PathTracer::render(const FrameSettings& fs, const ReferenceSettings& rs,
+                                 const std::function<bool(int, int)>& progress) const {
+    std::vector<double> sum;
+    int done = 0;
+    // Passes double in size so progress comes early and overhead stays small.
+    int pass = 1;
+    while (done < rs.spp) {
+        int count = std::min(pass, rs.spp - done);
+        trace(fs, rs, done, count, sum);
+        done += count;
+        pass = std::min(pass * 2, 64);
+        if (progress && !progress(done, rs.spp)) break;
+    }
+    RadianceImage img;
+    img.width = fs.width;
+    img.height = fs.height;
+    img.rgb.resize(sum.size());
+    for (size_t i = 0; i < sum.size(); ++i) img.rgb[i] = float(sum[i] / std::max(done, 1));
+    return img;
+}
+
+}  // namespace gi

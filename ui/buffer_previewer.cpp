@@ -1,0 +1,129 @@
+#include "ui/buffer_previewer.h"
+
+#include "common/shared.h"
+
+#include <glm/common.hpp>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi::ui {
+
+namespace {
+
+constexpr glm::vec4 kChannelMasks[] = {{1, 1, 1, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+constexpr float kMinZoom = 0.1f, kMaxZoom = 512.0f;
+
+// The texture coordinate drawView samples at a point of the panel (view.frag's mapping).
+glm::vec2 sourceUV(glm::vec2 screenUV, float zoom, glm::vec2 pan) { return (screenUV - 0.5f) / zoom + 0.5f + pan; }
+
+}  // namespace
+
+void BufferPreviewer::draw(const Renderer& renderer) {
+    std::vector<DebugView> views = renderer.debugViews();
+    const DebugView* view = nullptr;
+    for (const DebugView& v : views)
+        if (v.name == mView) view = &v;
+
+    if (ImGui::BeginCombo("view", mView.c_str())) {
+        for (const DebugView& v : views)
+            if (ImGui::Selectable(v.name.c_str(), v.name == mView)) mView = v.name;
+        ImGui::EndCombo();
+    }
+    ImGui::Combo("channel", &mChannel, "RGB\0R\0G\0B\0A\0");
+    ImGui::SliderFloat("exposure", &mExposure, -10.0f, 10.0f, "%.1f EV");
+    if (ImGui::Button("Reset zoom")) {
+        mZoom = 1.0f;
+        mPan = glm::vec2(0.0f);
+    }
+    ImGui::SameLine();
+    ImGui::TextDisabled("%.2fx  (wheel: zoom, drag: pan)", mZoom);
+    if (!view) {
+        ImGui::TextDisabled("view '%s' is not available", mView.c_str());
+        return;
+    }
+
+    // Fit the view's aspect into the space left above one readout line.
+    ImVec2 avail = ImGui::GetContentRegionAvail();
+    avail.y -= ImGui::GetTextLineHeightWithSpacing();
+    float aspect = float(std::max(view->width, 1)) / float(std::max(view->height, 1));
+    glm::vec2 size = avail.x / aspect <= avail.y ? glm::vec2(avail.x, avail.x / aspect) : glm::vec2(avail.y * aspect, avail.y);
+    size = glm::max(glm::floor(size), glm::vec2(16.0f));
+    renderImage(renderer, *view, int(size.x), int(size.y));
+
+    ImVec2 pos = ImGui::GetCursorScreenPos();
+    ImGui::Image(ImTextureID(intptr_t(mImage.id())), ImVec2(size.x, size.y), ImVec2(0, 1), ImVec2(1, 0));
+    // An invisible button over the image takes the clicks, so dragging pans instead of moving the window.
+    ImGui::SetCursorScreenPos(pos);
+    ImGui::InvisibleButton("##image", ImVec2(size.x, size.y));
+    bool hovered = ImGui::IsItemHovered();
+    const ImGuiIO& io = ImGui::GetIO();
+    // Screen y grows down, texture v grows up.
+    glm::vec2 screenUV((io.MousePos.x - pos.x) / size.x, 1.0f - (io.MousePos.y - pos.y) / size.y);
+    if (hovered || ImGui::IsItemActive()) interact(screenUV, size, ImGui::IsItemActive());
+
+    if (!hovered) {
+        ImGui::TextDisabled("%s: %dx%d", view->name.c_str(), view->width, view->height);
+    } else if (view->target == GL_TEXTURE_CUBE_MAP) {
+        ImGui::TextDisabled("no texel readout for cube maps");
+    } else {
+        readout(*view, sourceUV(screenUV, mZoom, mPan));
+    }
+}
+
+void BufferPreviewer::renderImage(const Renderer& renderer, const DebugView& view, int width, int height) {
+    if (!mImage || mImage.width() != width || mImage.height() != height) {
+        mImage = gl::Texture::create2D(GL_RGBA8, width, height);
+        if (!mFBO) mFBO = gl::createFramebuffer();
+        glNamedFramebufferTexture(mFBO.id(), GL_COLOR_ATTACHMENT0, mImage.id(), 0);
+    }
+    Renderer::ViewParams params;
+    params.channelMask = kChannelMasks[mChannel];
+    params.exposure = mExposure;
+    params.zoom = mZoom;
+    params.pan = mPan;
+    glBindFramebuffer(GL_FRAMEBUFFER, mFBO.id());
+    glViewport(0, 0, width, height);
+    renderer.drawView(view, params);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void BufferPreviewer::interact(glm::vec2 screenUV, glm::vec2 size, bool dragging) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.MouseWheel != 0.0f) {
+        // Zoom about the mouse: the texel under it stays put.
+        glm::vec2 anchor = sourceUV(screenUV, mZoom, mPan);
+        mZoom = std::clamp(mZoom * std::pow(1.2f, io.MouseWheel), kMinZoom, kMaxZoom);
+        mPan = anchor - (screenUV - 0.5f) / mZoom - 0.5f;
+    }
+    if (dragging) mPan -= glm::vec2(io.MouseDelta.x, -io.MouseDelta.y) / size / mZoom;
+}
+
+void BufferPreviewer::readout(const DebugView& view, glm::vec2 uv) {
+    if (uv.x < 0.0f || uv.y < 0.0f || uv.x >= 1.0f || uv.y >= 1.0f) {
+        ImGui::TextDisabled("outside the texture");
+        return;
+    }
+    int x = std::min(int(uv.x * float(view.width)), view.width - 1);
+    int y = std::min(int(uv.y * float(view.height)), view.height - 1);
+    GLint depthBits = 0;
+    glGetTextureLevelParameteriv(view.texture, 0, GL_TEXTURE_DEPTH_SIZE, &depthBits);
+    float texel[4] = {};
+    if (depthBits > 0) {
+        glGetTextureSubImage(view.texture, 0, x, y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof(float), texel);
+        if (view.mode == shared::kViewLinearDepth) {
+            // The same linearisation view.frag applies, as a distance.
+            float z = texel[0] * 2.0f - 1.0f;
+            float distance = 2.0f * view.near * view.far / (view.far + view.near - z * (view.far - view.near));
+            ImGui::Text("(%d, %d)  depth %.6f (%.3f m)", x, y, texel[0], distance);
+        } else {
+            ImGui::Text("(%d, %d)  depth %.6f", x, y, texel[0]);
+        }
+    } else {
+        glGetTextureSubImage(view.texture, 0, x, y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof texel, texel);
+        ImGui::Text("(%d, %d)  %.4g %.4g %.4g %.4g", x, y, texel[0], texel[1], texel[2], texel[3]);
+    }
+}
+
+}  // namespace gi::ui

@@ -1,0 +1,78 @@
+// The editor: the preset being tuned, its scene and the renderer, and the panels that edit them.
+// Each frame renders the preset as the window's background and draws the panels on top. Panels
+// edit the preset through the settings reflection (drawSettings) and report the OR of the Cost
+// bits of what changed; Editor::apply is the one place that acts on those bits.
+#pragma once
+
+#include "gi/gl/handle.h"
+#include "gi/preset/preset.h"
+#include "gi/render/renderer.h"
+#include "gi/scene/scene.h"
+#include "ui/buffer_previewer.h"
+#include "ui/fly_camera.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gi::ui {
+
+struct EditorOptions {
+    std::filesystem::path preset;  // preset or glTF file; empty: presetDir()/default.json, else the built-in default
+    std::string view = "final";    // the buffer previewer's first view
+    int width = 1280;              // first frame size, for the memory estimate before the scene is uploaded
+    int height = 720;
+};
+
+class Editor {
+public:
+    // Loads the preset and its scene and builds the renderer. Needs a current GL 4.5 context.
+    // Throws gi::Error for a bad preset, scene or shader.
+    explicit Editor(const EditorOptions& options);
+
+    // One frame: camera input, the preset rendered into the default framebuffer (width x height,
+    // the window's background), then the panels. `dt` is the previous frame's duration in seconds.
+    void frame(int width, int height, float dt);
+
+    // The window title: the preset file, starred when it has unsaved changes.
+    std::string title() const;
+
+private:
+    Preset mPreset;
+    Preset mGoodPreset;                 // the last preset that rendered; restored when a frame fails
+    std::filesystem::path mPresetPath;  // the file Save writes; empty for an unsaved preset
+    std::string mPathField;             // the Presets panel's path (Open, Save As)
+    std::filesystem::path mConfirmOverwrite;  // Save As target the user was warned exists
+    bool mDirty = false;
+    std::string mLoadedScene;           // header.scene that mScene came from
+    Scene mScene;
+    Renderer mRenderer;
+    FlyCamera mFlyCamera;
+    BufferPreviewer mPreviewer;
+    gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
+    int mWidth, mHeight;
+    float mFrameMs = 0.0f;
+    std::string mGLRenderer;
+    std::vector<std::string> mSceneFiles;  // glTF files in the asset search path, as search-path names
+    std::vector<std::filesystem::path> mPresetFiles;
+
+    std::string mFrameError, mSceneError, mPresetError, mPresetStatus, mShaderLog;
+
+    void apply(uint8_t cost);
+    // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
+    // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
+    void installScene(Preset& p, bool resetView);
+    void renderViewport(int width, int height);
+    void openPreset(const std::filesystem::path& path);
+    void savePresetAs(const std::filesystem::path& path);
+    void scanFiles();
+
+    void drawPanels();
+    uint8_t scenePanel();
+    void presetsPanel();
+    uint8_t cameraTools();  // beside the generated camera fields
+    uint8_t lightsPanel();
+    void statsPanel();
+};
+
+}  // namespace gi::ui

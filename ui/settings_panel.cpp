@@ -1,0 +1,107 @@
+#include "ui/settings_panel.h"
+
+#include "gi/preset/reflect.h"
+
+#include <glm/common.hpp>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cfloat>
+#include <climits>
+#include <cmath>
+
+namespace gi::ui {
+
+namespace {
+
+// ImGui clamps drags to [lo, hi]; an unbounded end becomes a huge finite one it can handle.
+float lowEnd(const FieldMeta& m) { return std::isfinite(m.min) ? float(m.min) : -FLT_MAX / 2; }
+float highEnd(const FieldMeta& m) { return std::isfinite(m.max) ? float(m.max) : FLT_MAX / 2; }
+double span(const FieldMeta& m) { return m.max - m.min; }  // inf when unbounded
+
+// Drag speed per pixel: the field's own step, else a fraction of a small range, else relative
+// to the value so a 0.05 m near plane and a 2048 MiB budget both drag sensibly.
+float dragSpeed(const FieldMeta& m, float value) {
+    if (m.step > 0) return float(m.step);
+    if (span(m) <= 100) return float(span(m) / 200);
+    return 0.005f * std::max(1.0f, std::abs(value));
+}
+
+bool isColor(const FieldMeta& m) {
+    std::string key = m.key;
+    std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return key.find("color") != std::string::npos || key.find("colour") != std::string::npos ||
+           key.find("ambient") != std::string::npos;
+}
+
+constexpr ImGuiSliderFlags kDragFlags = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoRoundToFormat;
+
+}  // namespace
+
+void fieldTooltip(const FieldMeta& m, bool showRange) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30);
+    ImGui::TextUnformatted(m.description);
+    if (*m.unit) ImGui::Text("unit: %s", m.unit);
+    if (showRange) ImGui::Text("range: %s", detail::rangeText(m).c_str());
+    ImGui::Text("change: %s", costName(m.cost));
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
+bool drawField(float& value, const FieldMeta& m) {
+    float v = value;
+    bool changed;
+    if (m.step == 0 && span(m) <= 100)
+        changed = ImGui::SliderFloat(m.key, &v, lowEnd(m), highEnd(m), "%.3f", kDragFlags);
+    else
+        changed = ImGui::DragFloat(m.key, &v, dragSpeed(m, v), lowEnd(m), highEnd(m), "%.4g", kDragFlags);
+    fieldTooltip(m, true);
+    if (!changed) return false;
+    value = std::clamp(v, lowEnd(m), highEnd(m));
+    return true;
+}
+
+bool drawField(int& value, const FieldMeta& m) {
+    int lo = std::isfinite(m.min) ? int(m.min) : INT_MIN / 2;
+    int hi = std::isfinite(m.max) ? int(m.max) : INT_MAX / 2;
+    float speed = m.step > 0 ? float(m.step) : std::max(0.2f, 0.005f * float(std::abs(value)));
+    int v = value;
+    bool changed = ImGui::DragInt(m.key, &v, speed, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);
+    fieldTooltip(m, true);
+    if (!changed) return false;
+    value = std::clamp(v, lo, hi);
+    return true;
+}
+
+bool drawField(bool& value, const FieldMeta& m) {
+    bool changed = ImGui::Checkbox(m.key, &value);
+    fieldTooltip(m, false);
+    return changed;
+}
+
+bool drawField(std::string& value, const FieldMeta& m) {
+    ImGui::InputText(m.key, &value);
+    fieldTooltip(m, false);
+    // Report the edit once it is complete (Enter or focus lost), not on every keystroke: a
+    // half-typed scene path must not trigger a reload.
+    return ImGui::IsItemDeactivatedAfterEdit();
+}
+
+bool drawField(glm::vec3& value, const FieldMeta& m) {
+    glm::vec3 v = value;
+    bool changed;
+    if (isColor(m))
+        changed = ImGui::ColorEdit3(m.key, &v.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+    else
+        changed = ImGui::DragFloat3(m.key, &v.x, dragSpeed(m, std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)})),
+                                    lowEnd(m), highEnd(m), "%.3f", kDragFlags);
+    fieldTooltip(m, true);
+    if (!changed) return false;
+    value = glm::clamp(v, glm::vec3(lowEnd(m)), glm::vec3(highEnd(m)));
+    return true;
+}
+
+}  // namespace gi::ui

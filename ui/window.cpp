@@ -1,0 +1,88 @@
+#include "ui/window.h"
+
+#include "gi/gl/debug.h"
+
+// libepoxy must come before GLFW, which is told (GLFW_INCLUDE_NONE) not to pull in a GL header.
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+namespace gi::ui {
+
+Window::Window(int width, int height, const char* title) {
+    if (!glfwInit())
+        throw NoDisplayError("no display available (set DISPLAY or use gi-render for headless rendering)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+    mWindow = glfwCreateWindow(width, height, title, nullptr, nullptr);
+    if (!mWindow) {
+        const char* reason = nullptr;
+        glfwGetError(&reason);
+        std::string message = std::string("cannot open an OpenGL 4.5 core window: ") + (reason ? reason : "unknown GLFW error");
+        glfwTerminate();
+        throw NoDisplayError(message);
+    }
+    glfwMakeContextCurrent(mWindow);
+    glfwSwapInterval(1);
+    gl::installDebugOutput();
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    // No imgui.ini: the layout is the same on every start, so screenshots are reproducible.
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(mWindow, true);
+    ImGui_ImplOpenGL3_Init("#version 450");
+}
+
+Window::~Window() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(mWindow);
+    glfwTerminate();
+}
+
+bool Window::shouldClose() const { return glfwWindowShouldClose(mWindow); }
+
+void Window::beginFrame() {
+    glfwPollEvents();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+}
+
+void Window::renderUI() {
+    ImGui::Render();
+    int width, height;
+    framebufferSize(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+std::vector<uint8_t> Window::readBackBuffer(int& width, int& height) const {
+    framebufferSize(width, height);
+    std::vector<uint8_t> pixels(size_t(width) * size_t(height) * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    // The back buffer: under Xvfb the front buffer reads back black.
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    // ImGui's blending leaves partial alpha in the window; a screenshot is opaque.
+    for (size_t i = 3; i < pixels.size(); i += 4) pixels[i] = 255;
+    return pixels;
+}
+
+void Window::swap() { glfwSwapBuffers(mWindow); }
+
+void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(mWindow, &width, &height); }
+
+void Window::setTitle(const std::string& title) { glfwSetWindowTitle(mWindow, title.c_str()); }
+
+}  // namespace gi::ui

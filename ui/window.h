@@ -1,0 +1,45 @@
+// The editor's window: a GLFW window with a GL 4.5 core debug context, and Dear ImGui set up on
+// it. The GI core never sees GLFW; it only needs the current GL context.
+#pragma once
+
+#include "gi/util/error.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+struct GLFWwindow;
+
+namespace gi::ui {
+
+// No window could be opened (no X display, or no GL 4.5): the caller exits with its own code.
+class NoDisplayError : public Error {
+public:
+    using Error::Error;
+};
+
+class Window {
+public:
+    // Throws NoDisplayError when GLFW cannot start or the window cannot be created.
+    Window(int width, int height, const char* title);
+    ~Window();
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+
+    bool shouldClose() const;
+    // Polls events and starts an ImGui frame.
+    void beginFrame();
+    // Draws the ImGui frame over whatever the back buffer holds.
+    void renderUI();
+    // The back buffer as RGBA8, bottom row first, alpha forced opaque. Call before swap().
+    std::vector<uint8_t> readBackBuffer(int& width, int& height) const;
+    void swap();
+
+    void framebufferSize(int& width, int& height) const;
+    void setTitle(const std::string& title);
+
+private:
+    GLFWwindow* mWindow = nullptr;
+};
+
+}  // namespace gi::ui
