@@ -5,6 +5,8 @@
 #include "gi/render/image_io.h"
 #include "gi/render/renderer.h"
 #include "gi/gl/debug.h"
+#include "gi/metrics/metrics.h"
+#include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
 
@@ -13,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -39,12 +42,37 @@ void printSettings(bool asJson) {
     }
 }
 
+// The cached reference for this frame, with a progress line on a terminal.
+gi::CachedReference referenceFor(const gi::Scene& scene, const gi::FrameSettings& frame, const gi::ReferenceSettings& rs,
+                                 const char* what) {
+    bool tty = isatty(fileno(stderr));
+    gi::CachedReference ref = gi::cachedReference(scene, frame, rs, [&](int done, int total) {
+        if (tty) std::fprintf(stderr, "\r%s: %d / %d samples per pixel", what, done, total);
+        return true;
+    });
+    if (tty && !ref.fromCache) std::fprintf(stderr, "\n");
+    return ref;
+}
+
+gi::json referenceStats(const gi::CachedReference& ref, const gi::ReferenceSettings& rs) {
+    return {{"spp", rs.spp},
+            {"mode", gi::enumName(rs.mode)},
+            {"maxBounces", rs.maxBounces},
+            {"seed", rs.seed},
+            {"fromCache", ref.fromCache},
+            {"seconds", ref.seconds},
+            {"rays", ref.rays},
+            {"raysPerSecond", ref.seconds > 0 ? double(ref.rays) / ref.seconds : 0.0},
+            {"cacheFile", ref.file.string()}};
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"gi-render: render a GI Workbench preset or a glTF file headless"};
     std::string input, outDir;
     int width = 640, height = 360, frames = 1, camera = -1;
     std::vector<std::string> sets;
-    bool views = false, list = false, listJson = false;
+    bool views = false, list = false, listJson = false, reference = false, score = false;
+    int spp = 0;
     app.add_option("input", input, "Preset (.json) or glTF file (.gltf, .glb); none: the built-in default preset");
     app.add_option("--out", outDir, "Output folder (created if missing)");
     app.add_option("--width", width, "Image width in pixels")->check(CLI::Range(1, 16384));
@@ -53,6 +81,10 @@ int run(int argc, char** argv) {
     app.add_option("--camera", camera, "Use the glTF file's camera N")->check(CLI::Range(0, 1023));
     app.add_option("--set", sets, "Override a setting: key=value (see --list-settings)");
     app.add_flag("--views", views, "Also write every debug view as DIR/views/NAME.png");
+    app.add_flag("--reference", reference, "Also write the path-traced reference as DIR/reference.exr (cached)");
+    app.add_option("--spp", spp, "Samples per pixel of the reference (reference.spp)")->check(CLI::Range(1, 1 << 16));
+    app.add_flag("--score", score,
+                 "Score the image against the cached reference: metrics in stats.json, maps beside the image");
     app.add_flag("--list-settings", list, "Print every settings key and exit");
     app.add_flag("--json", listJson, "With --list-settings: print a JSON list");
     try {
@@ -71,9 +103,10 @@ int run(int argc, char** argv) {
     if (outDir.empty()) throw gi::Error("no output folder: give --out DIR");
 
     // No input: the built-in default preset, which needs no files.
-    gi::Preset preset = input.empty() ? gi::Preset() : gi::presetForInput(input, camera);
+    gi::Preset preset = input.empty() ? gi::builtinDefaultPreset() : gi::presetForInput(input, camera);
     if (input.empty()) input = "(built-in default)";
     for (const auto& s : sets) gi::applySetting(preset, s);
+    if (spp > 0) preset.reference.spp = spp;
 
     gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "gi-render: warning: %s: %s\n", scene.name.c_str(), w.c_str());
@@ -120,6 +153,26 @@ int run(int argc, char** argv) {
             w = std::max(1, int(float(w) * scale));
             h = std::max(1, int(float(h) * scale));
             gi::writePNG(out / "views" / (v.name + ".png"), w, h, renderer.renderViewImage(v, w, h));
+        }
+    }
+    if (reference || score) {
+        gi::ImageRGB image = gi::imageFromGL(width, height, renderer.readHDR());
+        gi::ImageRGB indirect = gi::imageFromGL(width, height, renderer.readIndirectRadiance());
+        gi::CachedReference full = referenceFor(scene, frame, preset.reference, "reference");
+        gi::writeEXR(out / "reference.exr", full.image);
+        gi::writePNGTopFirst(out / "reference.png", width, height, gi::encodeSRGB8(gi::toneMapped(full.image, frame.toneMap)));
+        stats["reference"] = referenceStats(full, preset.reference);
+        if (score) {
+            gi::ReferenceSettings indirectSettings = preset.reference;
+            indirectSettings.mode = gi::ReferenceMode::Indirect;
+            gi::CachedReference indirectRef = referenceFor(scene, frame, indirectSettings, "indirect reference");
+            stats["referenceIndirect"] = referenceStats(indirectRef, indirectSettings);
+            gi::RenderScoreInputs in{&image, &full.image, &indirect, &indirectRef.image, frame.toneMap};
+            gi::Metrics m = gi::scoreRender(in);
+            stats["metrics"] = gi::metricsToJson(m);
+            gi::writeRenderScoreMaps(out, in);
+            std::printf("  score: ssim %.4f  score %.3f  rmse %.4f  psnr %.2f dB  leak %.4f (energy %.4f)\n", m.ssim,
+                        m.score, m.rmse, m.psnr, m.leakFraction, m.leakEnergy);
         }
     }
     gi::writeFileAtomic(out / "stats.json", stats.dump(2) + "\n");

@@ -1,5 +1,6 @@
 // Preset files: the shipped presets, validation messages, --set, schema version, atomic saves.
 #include "gi/preset/preset.h"
+#include "gi/scene/scene.h"
 #include "gi/util/paths.h"
 #include "test_util.h"
 
@@ -30,10 +31,13 @@ TEST(Preset, ShippedPresetsLoad) {
     EXPECT_GE(count, 3);
 }
 
-TEST(Preset, DefaultFileEqualsTheBuiltInDefault) {
-    // gi-render without input and the editor without files use Preset{}: it must match the file.
+TEST(Preset, BuiltInDefaultIsTheDefaultFile) {
+    // gi-render without input and the editor without files use the compiled-in default.json.
     Preset file = loadPreset(std::filesystem::path(GI_PRESET_DIR) / "default.json");
-    EXPECT_EQ(presetToJson(file), presetToJson(Preset{}));
+    Preset builtin = builtinDefaultPreset();
+    EXPECT_EQ(presetToJson(builtin), presetToJson(file));
+    EXPECT_EQ(builtin.header.scene, "cornell");
+    EXPECT_TRUE(isBuiltinScene(builtin.header.scene)) << "the default must need no files";
 }
 
 TEST(Preset, SaveLoadRoundTripIsAtomic) {

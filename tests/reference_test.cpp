@@ -3,6 +3,7 @@
 // raster direct light on the built-in scenes, determinism.
 #include "gi/preset/preset.h"
 #include "gi/reference/path_tracer.h"
+#include "gi/reference/reference_cache.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/mesh_builder.h"
 #include "test_util.h"
@@ -49,7 +50,7 @@ TEST(Reference, WhiteFurnace) {
         ReferenceSettings rs;
         rs.spp = 64;
         rs.maxBounces = 64;
-        RadianceImage img = pt.render(furnaceFrame(32), rs);
+        ImageRGB img = pt.render(furnaceFrame(32), rs);
         double expected = 0.5 / (1.0 - albedo);
         double mean = meanLuminance(img.rgb, 3);
         std::printf("furnace albedo %.1f: %.5f expected %.5f (error %.3f%%)\n", albedo, mean, expected,
@@ -96,7 +97,7 @@ TEST_F(ReferenceGL, DirectModeMatchesRasterAndAnalyticOnLambertPlane) {
         fs.lights = {l};
         raster.render(fs);
         std::vector<float> hdr = raster.readHDR();
-        RadianceImage ref = pt.render(fs, rs);
+        ImageRGB ref = pt.render(fs, rs);
         // The camera target sits on the corner of the four centre pixels: average them, so the
         // gradient across a pixel cancels. The raster image is bottom row first, the reference top.
         int c = fs.width / 2;
@@ -126,7 +127,7 @@ TEST(Reference, ErrorFallsAsInverseSqrtOfSamples) {
     ReferenceSettings truth;
     truth.spp = 2048;
     truth.seed = 1000;
-    RadianceImage ref = pt.render(fs, truth);
+    ImageRGB ref = pt.render(fs, truth);
     double previous = 0;
     for (int spp : {16, 64, 256}) {
         // Average the error over seeds so the ratio is not at the mercy of one draw.
@@ -135,7 +136,7 @@ TEST(Reference, ErrorFallsAsInverseSqrtOfSamples) {
             ReferenceSettings rs;
             rs.spp = spp;
             rs.seed = seed;
-            RadianceImage img = pt.render(fs, rs);
+            ImageRGB img = pt.render(fs, rs);
             double se = 0;
             for (size_t i = 0; i < img.rgb.size(); ++i) se += double(img.rgb[i] - ref.rgb[i]) * (img.rgb[i] - ref.rgb[i]);
             err += std::sqrt(se / img.rgb.size()) / 3.0;
@@ -166,7 +167,7 @@ TEST_F(ReferenceGL, MeanBrightnessAgreesWithRasterDirectOnBuiltInScenes) {
         ReferenceSettings rs;
         rs.mode = ReferenceMode::Direct;
         rs.spp = 64;
-        RadianceImage ref = pt.render(fs, rs);
+        ImageRGB ref = pt.render(fs, rs);
         double rasterMean = meanLuminance(raster.readHDR(), 4), refMean = meanLuminance(ref.rgb, 3);
         std::printf("%s: raster direct %.5f, reference direct %.5f (%.2f%%)\n", name, rasterMean, refMean,
                     100.0 * (rasterMean - refMean) / refMean);
@@ -187,6 +188,50 @@ TEST(Reference, DeterministicWhateverThePassSplit) {
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-9 * std::max(1.0, std::abs(a[i])));
     EXPECT_GT(pt.raysTraced(), 16u * 16u * 16u);
+}
+
+TEST(Reference, CacheKeyCoversWhatDeterminesTheImage) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = frameSettings(Preset{}, scene, 16, 16);
+    ReferenceSettings rs;
+    uint64_t key = referenceKey(scene, fs, rs);
+    EXPECT_EQ(key, referenceKey(makeBuiltinScene("cornell"), fs, rs));
+    FrameSettings moved = fs;
+    moved.camera.eye.x += 0.01f;
+    EXPECT_NE(key, referenceKey(scene, moved, rs));
+    FrameSettings dimmer = fs;
+    dimmer.lights[0].intensity *= 0.5f;
+    EXPECT_NE(key, referenceKey(scene, dimmer, rs));
+    FrameSettings bigger = fs;
+    bigger.width = 32;
+    EXPECT_NE(key, referenceKey(scene, bigger, rs));
+    ReferenceSettings more = rs;
+    more.spp = 512;
+    EXPECT_NE(key, referenceKey(scene, fs, more));
+    Scene recoloured = scene;
+    recoloured.materials[1].baseColor.r = 0.5f;
+    EXPECT_NE(key, referenceKey(recoloured, fs, rs));
+    // Tone mapping and shadow-map settings do not change the reference.
+    FrameSettings toned = fs;
+    toned.toneMap.exposure = 2.0f;
+    toned.render.shadowMapSize = 256;
+    EXPECT_EQ(key, referenceKey(scene, toned, rs));
+}
+
+TEST(Reference, CacheStoresAndReloadsExactly) {
+    auto dir = test::tempDir();
+    setenv("GI_CACHE_DIR", dir.c_str(), 1);
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = frameSettings(Preset{}, scene, 16, 12);
+    ReferenceSettings rs;
+    rs.spp = 4;
+    CachedReference first = cachedReference(scene, fs, rs);
+    CachedReference second = cachedReference(scene, fs, rs);
+    unsetenv("GI_CACHE_DIR");
+    EXPECT_FALSE(first.fromCache);
+    EXPECT_TRUE(second.fromCache);
+    EXPECT_EQ(first.file.parent_path(), dir);
+    EXPECT_EQ(first.image.rgb, second.image.rgb);
 }
 
 TEST(Reference, AlphaMaskedSheetCastsNoShadowWhereCutOut) {
@@ -215,10 +260,10 @@ TEST(Reference, AlphaMaskedSheetCastsNoShadowWhereCutOut) {
     rs.mode = ReferenceMode::Direct;
     rs.spp = 1;
     float expected = 0.5f / glm::pi<float>() * sun.intensity;
-    RadianceImage open = PathTracer(s).render(fs, rs);
+    ImageRGB open = PathTracer(s).render(fs, rs);
     EXPECT_NEAR(open.rgb[(4 * 8 + 4) * 3], expected, 1e-3f);
     s.materials[plate].alphaMode = AlphaMode::Opaque;
-    RadianceImage closed = PathTracer(s).render(fs, rs);
+    ImageRGB closed = PathTracer(s).render(fs, rs);
     EXPECT_LT(closed.rgb[(4 * 8 + 4) * 3], 1e-4f);
 }
 

@@ -90,6 +90,43 @@ TEST(RenderCLI, GLTFInputWithItsCamera) {
     EXPECT_NE(bad.output.find("camera.sceneCamera"), std::string::npos) << bad.output;
 }
 
+TEST(RenderCLI, ScoreWritesMetricsAndMapsAndReusesTheReference) {
+    auto dir = test::tempDir();
+    std::string env = "GI_CACHE_DIR=" + (dir / "cache").string() + " ";
+    std::string args = std::string(GI_PRESET_DIR) + "/basic.json --width 64 --height 48 --score --spp 16 --out ";
+    auto first = test::runCommand(env + render(args + (dir / "a").string()));
+    ASSERT_EQ(first.exitCode, 0) << first.output;
+    json a = readJSON(dir / "a" / "stats.json");
+    for (const char* key : {"ssim", "score", "rmse", "psnr", "leakFraction", "leakEnergy"})
+        EXPECT_TRUE(a["metrics"][key].is_number()) << key << " in " << a["metrics"].dump();
+    EXPECT_GT(a["metrics"]["ssim"].get<double>(), 0.5);
+    EXPECT_LE(a["metrics"]["ssim"].get<double>(), 1.0);
+    EXPECT_FALSE(a["reference"]["fromCache"].get<bool>());
+    EXPECT_EQ(a["reference"]["spp"], 16);
+    for (const char* f : {"reference.exr", "reference.png", "ssim_map.png", "heat_map.png", "leak_map.png"})
+        EXPECT_TRUE(std::filesystem::exists(dir / "a" / f)) << f;
+
+    auto second = test::runCommand(env + render(args + (dir / "b").string()));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    json b = readJSON(dir / "b" / "stats.json");
+    EXPECT_TRUE(b["reference"]["fromCache"].get<bool>());
+    EXPECT_TRUE(b["referenceIndirect"]["fromCache"].get<bool>());
+    EXPECT_EQ(a["metrics"], b["metrics"]) << "a cached reference must score exactly like a fresh one";
+
+    // Another tool's images can be scored too: gi-compare reads the runner's PNGs.
+    auto cmp = test::runCommand(std::string(GI_COMPARE_EXE) + " " + (dir / "a" / "image.png").string() + " " +
+                                (dir / "a" / "reference.png").string() + " --json");
+    ASSERT_EQ(cmp.exitCode, 0) << cmp.output;
+    EXPECT_NEAR(json::parse(cmp.output)["ssim"].get<double>(), a["metrics"]["ssim"].get<double>(), 0.01);
+
+    auto onlyReference = test::runCommand(env + render(std::string(GI_PRESET_DIR) +
+                                                       "/default.json --width 32 --height 24 --reference --spp 4 --out " +
+                                                       (dir / "c").string()));
+    ASSERT_EQ(onlyReference.exitCode, 0) << onlyReference.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "c" / "reference.exr"));
+    EXPECT_FALSE(readJSON(dir / "c" / "stats.json").contains("metrics"));
+}
+
 TEST(RenderCLI, ListSettings) {
     auto r = test::runCommand(render("--list-settings --json"));
     ASSERT_EQ(r.exitCode, 0) << r.output;

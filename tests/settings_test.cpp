@@ -13,7 +13,8 @@ namespace {
 template <class S>
 class SettingsTest : public ::testing::Test {};
 
-using AllSettings = ::testing::Types<PresetHeader, CameraSettings, LightSettings, RenderSettings, ToneMapSettings>;
+using AllSettings = ::testing::Types<PresetHeader, CameraSettings, LightSettings, RenderSettings, ToneMapSettings,
+                                     ReferenceSettings, QualitySettings>;
 TYPED_TEST_SUITE(SettingsTest, AllSettings);
 
 // A JSON value of the wrong type for a field of type T.

@@ -246,4 +246,36 @@ void writeMetricMaps(const std::filesystem::path& dir, const ImageRGB& image, co
     writePNG(dir / "leak_map.png", w, h, toGLOrder(computeLeak(image, reference, leakOptions).map, w, h));
 }
 
+Metrics scoreRender(const RenderScoreInputs& in, const SSIMOptions& options) {
+    requireSameSize(*in.image, *in.reference);
+    Metrics m;
+    std::vector<uint8_t> a = encodeSRGB8(toneMapped(*in.image, in.toneMap));
+    std::vector<uint8_t> b = encodeSRGB8(toneMapped(*in.reference, in.toneMap));
+    m.ssim = computeSSIM(a, b, in.image->width, in.image->height, options).ssim;
+    m.score = seedScore(m.ssim);
+    m.rmse = rmse(*in.image, *in.reference);
+    m.psnr = psnr(*in.image, *in.reference);
+    if (in.indirect && in.referenceIndirect) {
+        LeakResult leak = computeLeak(*in.indirect, *in.referenceIndirect);
+        m.leakFraction = leak.fraction;
+        m.leakEnergy = leak.energy;
+    }
+    return m;
+}
+
+void writeRenderScoreMaps(const std::filesystem::path& dir, const RenderScoreInputs& in, const SSIMOptions& options) {
+    requireSameSize(*in.image, *in.reference);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw Error(dir.string() + ": cannot create folder: " + ec.message());
+    int w = in.image->width, h = in.image->height;
+    SSIMResult s = computeSSIM(encodeSRGB8(toneMapped(*in.image, in.toneMap)),
+                               encodeSRGB8(toneMapped(*in.reference, in.toneMap)), w, h, options);
+    writePNG(dir / "ssim_map.png", w, h, toGLOrder(ssimMapImage(s), w, h));
+    float heatScale = float(1.0 / std::max(meanLuminance(*in.reference), 1e-6));
+    writePNG(dir / "heat_map.png", w, h, toGLOrder(differenceHeatMap(*in.image, *in.reference, heatScale), w, h));
+    if (in.indirect && in.referenceIndirect)
+        writePNG(dir / "leak_map.png", w, h, toGLOrder(computeLeak(*in.indirect, *in.referenceIndirect).map, w, h));
+}
+
 }  // namespace gi

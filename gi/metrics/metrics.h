@@ -68,6 +68,8 @@
 //     yellow, yellow where the excess reaches the reference's mean luminance.
 #pragma once
 
+#include "gi/render/image.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -81,10 +83,6 @@ using json = nlohmann::json;
 // Reported in JSON for the PSNR of equal images, whose true value is infinite.
 inline constexpr double kPSNRCap = 999.0;
 
-struct ImageRGB {
-    int width = 0, height = 0;
-    std::vector<float> rgb;  // linear RGB, 3 floats per pixel, top row first
-};
 
 // Reads PNG, JPEG, EXR, HDR or anything else OpenImageIO reads. Float files are taken as linear;
 // integer files as sRGB (unless the file says it is linear) and decoded. Grey is replicated to
@@ -161,5 +159,20 @@ json metricsToJson(const Metrics& metrics);
 void writeMetricMaps(const std::filesystem::path& dir, const ImageRGB& image, const ImageRGB& reference,
                      const SSIMOptions& ssimOptions = {}, const LeakOptions& leakOptions = {},
                      float heatScale = 0.0f);
+
+// Scoring a render against its path-traced reference, as gi-render --score and the editor do:
+// SSIM and score on the tone-mapped 8-bit images (what a viewer compares), RMSE and PSNR on the
+// linear HDR images, the leak measure on the indirect terms alone.
+struct RenderScoreInputs {
+    const ImageRGB* image = nullptr;              // the render, linear HDR
+    const ImageRGB* reference = nullptr;          // the full reference, linear HDR
+    const ImageRGB* indirect = nullptr;           // the render's indirect term; null: no leak measure
+    const ImageRGB* referenceIndirect = nullptr;  // the indirect-only reference
+    ToneMapSettings toneMap;
+};
+Metrics scoreRender(const RenderScoreInputs& in, const SSIMOptions& options = {});
+// DIR/ssim_map.png and DIR/heat_map.png for the image, DIR/leak_map.png for the indirect terms.
+void writeRenderScoreMaps(const std::filesystem::path& dir, const RenderScoreInputs& in,
+                          const SSIMOptions& options = {});
 
 }  // namespace gi

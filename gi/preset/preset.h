@@ -32,6 +32,20 @@ struct PresetHeader {
     }
 };
 
+// What a preset promises when its image is scored against the path-traced reference
+// (tests/image_tests.json renders each listed preset and checks these bounds).
+struct QualitySettings {
+    static constexpr std::string_view kSection = "quality";
+    float minSSIM = 0.0f;           // the SSIM the render must reach against the full reference
+    float maxLeakFraction = 1.0f;   // the largest fraction of leak pixels allowed
+
+    template <class V>
+    void visit(V&& v) {
+        v(minSSIM, {"minSSIM", "SSIM the preset must reach against the path-traced reference (tests check it)", "", -1, 1});
+        v(maxLeakFraction, {"maxLeakFraction", "Largest fraction of pixels allowed to leak light", "", 0, 1});
+    }
+};
+
 struct Preset {
     static constexpr int kSchemaVersion = 1;
     PresetHeader header;
@@ -41,6 +55,7 @@ struct Preset {
     RenderSettings render;
     ToneMapSettings toneMap;
     ReferenceSettings reference;
+    QualitySettings quality;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)
 
     // Every fixed settings section, for code that treats them alike.
@@ -50,8 +65,12 @@ struct Preset {
         f(render);
         f(toneMap);
         f(reference);
+        f(quality);
     }
 };
+
+// presets/default.json, compiled in: what gi-render without input and the editor without files use.
+Preset builtinDefaultPreset();
 
 json presetToJson(const Preset& p);
 // `context` names the source in error messages (usually the file path).

@@ -550,7 +550,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
     return !cancelled;
 }
 
-RadianceImage PathTracer::render(const FrameSettings& fs, const ReferenceSettings& rs,
+ImageRGB PathTracer::render(const FrameSettings& fs, const ReferenceSettings& rs,
                                  const std::function<bool(int, int)>& progress) const {
     std::vector<double> sum;
     int done = 0;
@@ -563,7 +563,7 @@ RadianceImage PathTracer::render(const FrameSettings& fs, const ReferenceSetting
         pass = std::min(pass * 2, 64);
         if (progress && !progress(done, rs.spp)) break;
     }
-    RadianceImage img;
+    ImageRGB img;
     img.width = fs.width;
     img.height = fs.height;
     img.rgb.resize(sum.size());

@@ -24,6 +24,7 @@
 #pragma once
 
 #include "gi/reference/reference_settings.h"
+#include "gi/render/image.h"
 #include "gi/render/render_settings.h"
 #include "gi/scene/scene.h"
 
@@ -34,12 +35,6 @@
 #include <vector>
 
 namespace gi {
-
-// A linear RGB accumulation buffer, top row first.
-struct RadianceImage {
-    int width = 0, height = 0;
-    std::vector<float> rgb;
-};
 
 class PathTracer {
 public:
@@ -55,7 +50,7 @@ public:
 
     // Renders rs.spp samples in passes; `progress(samplesDone, total)` after each pass returns
     // false to stop early. The image is the mean radiance of the samples done.
-    RadianceImage render(const FrameSettings& fs, const ReferenceSettings& rs,
+    ImageRGB render(const FrameSettings& fs, const ReferenceSettings& rs,
                          const std::function<bool(int, int)>& progress = {}) const;
 
     uint64_t raysTraced() const { return mRays.load(); }

@@ -31,6 +31,15 @@ void writePNG(const std::filesystem::path& path, int width, int height, const st
     writeImage(path, width, height, rgba, OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT8);
 }
 
+void writePNGTopFirst(const std::filesystem::path& path, int width, int height, const std::vector<uint8_t>& rgb) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) throw Error(path.string() + ": cannot write image: " + OIIO::geterror());
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    bool ok = out->open(path.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data());
+    ok = out->close() && ok;
+    if (!ok) throw Error(path.string() + ": write failed: " + out->geterror());
+}
+
 void writeEXR(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgba) {
     writeImage(path, width, height, rgba, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::HALF);
 }

@@ -482,6 +482,20 @@ std::vector<float> Renderer::readHDR() const {
     return px;
 }
 
+std::vector<float> Renderer::readIndirectRadiance() const {
+    size_t n = size_t(mWidth) * mHeight * 4;
+    std::vector<float> albedo(n), material(n), indirect(n);
+    GLsizei bytes = GLsizei(n * sizeof(float));
+    glGetTextureImage(mAlbedo.id(), 0, GL_RGBA, GL_FLOAT, bytes, albedo.data());
+    glGetTextureImage(mMaterial.id(), 0, GL_RGBA, GL_FLOAT, bytes, material.data());
+    glGetTextureImage(mIndirect.id(), 0, GL_RGBA, GL_FLOAT, bytes, indirect.data());
+    for (size_t i = 0; i < n; i += 4) {
+        float diffuse = 1.0f - material[i + 1];
+        for (int c = 0; c < 3; ++c) indirect[i + c] *= albedo[i + c] * diffuse;
+    }
+    return indirect;
+}
+
 void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);

@@ -101,6 +101,9 @@ public:
 
     std::vector<uint8_t> readLDR() const;  // RGBA8, bottom row first
     std::vector<float> readHDR() const;    // RGBA32F, bottom row first
+    // The indirect term as the lighting pass adds it (albedo * (1 - metallic) * indirect), RGBA32F,
+    // bottom row first: what the leak measure compares with the indirect-only reference.
+    std::vector<float> readIndirectRadiance() const;
 
     // Draws a debug view into the current framebuffer's viewport.
     struct ViewParams {

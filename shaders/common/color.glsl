@@ -4,13 +4,7 @@ vec3 linearToSRGB(vec3 c) {
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
-// Narkowicz 2015 fit of the ACES reference rendering transform.
-vec3 toneACES(vec3 x) {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-}
-
+// The tone curves live in common/shared.h, shared with the C++ that tone maps references.
 vec3 toneMap(vec3 c, int op) {
-    if (op == kToneReinhard) return c / (1.0 + c);
-    if (op == kToneACES) return toneACES(c);
-    return clamp(c, 0.0, 1.0);
+    return vec3(giToneChannel(c.r, op), giToneChannel(c.g, op), giToneChannel(c.b, op));
 }

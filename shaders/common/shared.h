@@ -2,10 +2,14 @@
 // Written once here; C++ includes it as "common/shared.h", GLSL through the #include expander.
 #ifdef __cplusplus
 #pragma once
+#include <algorithm>
 #define GI_CONST inline constexpr
+#define GI_FUNC inline
 namespace gi::shared {
+inline float clamp(float x, float lo, float hi) { return std::min(std::max(x, lo), hi); }
 #else
 #define GI_CONST const
+#define GI_FUNC
 #endif
 
 // Texture units of the lighting and composite passes.
@@ -32,6 +36,14 @@ GI_CONST int kLightSpot = 2;
 GI_CONST int kToneLinear = 0;
 GI_CONST int kToneReinhard = 1;
 GI_CONST int kToneACES = 2;
+
+// One channel through a tone curve. C++ (reference images) and GLSL (the tone-map pass) share
+// this code, so a reference and a render are tone mapped alike. ACES is Narkowicz's 2015 fit.
+GI_FUNC float giToneChannel(float x, int op) {
+    if (op == kToneReinhard) return x / (1.0f + x);
+    if (op == kToneACES) return clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+    return clamp(x, 0.0f, 1.0f);
+}
 
 // Debug view modes (view.frag).
 GI_CONST int kViewColor = 0;        // RGB as stored (linear HDR shown with exposure, sRGB encoded)

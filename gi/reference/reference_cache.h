@@ -1,0 +1,38 @@
+// A cache of path-traced references, so tests and the editor pay for each one once. The key is
+// a hash of everything that determines the image: the scene's contents (vertices, indices,
+// materials, texture pixels, whatever file they came from), the resolved camera and lights,
+// the image size, the specular switch, every reference setting, and kReferenceVersion (bumped
+// whenever the path tracer's output changes). Files are float EXRs written atomically.
+#pragma once
+
+#include "gi/reference/path_tracer.h"
+
+#include <filesystem>
+#include <functional>
+
+namespace gi {
+
+inline constexpr int kReferenceVersion = 1;
+
+uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
+
+// $GI_CACHE_DIR, else $XDG_CACHE_HOME/gi-workbench/references, else ~/.cache/gi-workbench/references.
+std::filesystem::path referenceCacheDir();
+
+struct CachedReference {
+    ImageRGB image;
+    bool fromCache = false;
+    double seconds = 0.0;        // time to render (0 when read from the cache)
+    uint64_t rays = 0;           // rays traced (0 when read from the cache)
+    std::filesystem::path file;  // the cache file
+};
+
+// The cached reference, or a fresh render that is then stored. `progress` as PathTracer::render;
+// a render stopped early is returned but not stored.
+CachedReference cachedReference(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs,
+                                const std::function<bool(int, int)>& progress = {});
+
+void writeEXR(const std::filesystem::path& path, const ImageRGB& image);  // float RGB, atomic
+ImageRGB readEXR(const std::filesystem::path& path);
+
+}  // namespace gi
