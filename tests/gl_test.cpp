@@ -184,7 +184,7 @@ TEST_F(GL, EveryPassIsTimedAndReportsMemory) {
         names.push_back(s.name);
         EXPECT_GE(s.gpuMs, 0.0);
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"shadows", "gbuffer", "indirect", "lighting", "tonemap"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"shadows", "gbuffer", "indirect", "ssao", "lighting", "tonemap"}));
     EXPECT_GT(r.memoryBytes(), size_t(kSize) * kSize * 40);
     for (const auto& v : r.debugViews()) {
         auto img = r.renderViewImage(v, 64, 64);

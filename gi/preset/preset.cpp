@@ -202,6 +202,9 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
     }
     fs.render = p.render;
     fs.toneMap = p.toneMap;
+    fs.technique = p.header.technique;
+    fs.lpv = p.lpv;
+    fs.ssao = p.ssao;
     fs.width = width;
     fs.height = height;
     return fs;

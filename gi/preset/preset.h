@@ -12,18 +12,11 @@
 
 namespace gi {
 
-// The active GI technique. Later techniques add their names here and their settings sections.
-enum class Technique { None };
-template <>
-struct EnumNames<Technique> {
-    static constexpr std::array<std::pair<Technique, const char*>, 1> values{{{Technique::None, "none"}}};
-};
-
 // The top-level keys of a preset.
 struct PresetHeader {
     static constexpr std::string_view kSection = "";
     std::string scene = "cornell";           // built-in scene name or glTF path (search path applies)
-    Technique technique = Technique::None;   // which technique fills the indirect term
+    TechniqueKind technique = TechniqueKind::None;  // which technique fills the indirect term
 
     template <class V>
     void visit(V&& v) {
@@ -54,6 +47,8 @@ struct Preset {
     bool lightsFromScene = true;        // no "lights" key: take the scene's own lights
     RenderSettings render;
     ToneMapSettings toneMap;
+    LPVSettings lpv;
+    SSAOSettings ssao;
     ReferenceSettings reference;
     QualitySettings quality;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)
@@ -64,6 +59,8 @@ struct Preset {
         f(camera);
         f(render);
         f(toneMap);
+        f(lpv);
+        f(ssao);
         f(reference);
         f(quality);
     }

@@ -2,8 +2,10 @@
 // tone mapping.
 #pragma once
 
+#include "gi/lpv/lpv_settings.h"
 #include "gi/preset/settings.h"
 #include "gi/scene/scene_settings.h"
+#include "gi/ssao/ssao_settings.h"
 
 #include <vector>
 
@@ -54,12 +56,23 @@ struct ToneMapSettings {
 
 namespace gi {
 
+// The technique that fills the indirect term. Each names its settings section in the preset.
+enum class TechniqueKind { None, LPV };
+template <>
+struct EnumNames<TechniqueKind> {
+    static constexpr std::array<std::pair<TechniqueKind, const char*>, 2> values{
+        {{TechniqueKind::None, "none"}, {TechniqueKind::LPV, "lpv"}}};
+};
+
 // Everything one frame needs besides the scene: the preset resolved against the scene.
 struct FrameSettings {
     CameraSettings camera;
     std::vector<LightSettings> lights;
     RenderSettings render;
     ToneMapSettings toneMap;
+    TechniqueKind technique = TechniqueKind::None;
+    LPVSettings lpv;
+    SSAOSettings ssao;
     int width = 640;
     int height = 360;
 };

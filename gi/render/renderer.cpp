@@ -1,5 +1,7 @@
 #include "gi/render/renderer.h"
 
+#include "gi/lpv/lpv.h"
+
 #include "common/shared.h"
 #include "gi/util/error.h"
 
@@ -111,6 +113,8 @@ size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
     size_t face = size_t(fs.render.shadowMapSize) * size_t(fs.render.shadowMapSize) * 4;
     for (const auto& l : fs.lights)
         if (l.castShadows) bytes += face * (l.type == LightType::Point ? 6 : 1);
+    if (fs.technique == TechniqueKind::LPV) bytes += LPV::estimateBytes(fs);
+    bytes += SSAO::estimateBytes(fs.width, fs.height);
     return bytes;
 }
 
@@ -206,12 +210,20 @@ void Renderer::render(const FrameSettings& fs) {
     prepareShadows(fs);
     mCamera = fs.camera;
 
-    glm::mat4 viewProj = projectionMatrix(fs.camera, float(fs.width) / float(fs.height)) * viewMatrix(fs.camera);
+    if (fs.technique != mTechniqueKind || (fs.technique != TechniqueKind::None && !mTechnique)) {
+        mTechnique.reset();
+        if (fs.technique == TechniqueKind::LPV) mTechnique = std::make_unique<LPV>();
+        mTechniqueKind = fs.technique;
+    }
+    glm::mat4 view = viewMatrix(fs.camera);
+    glm::mat4 proj = projectionMatrix(fs.camera, float(fs.width) / float(fs.height));
+    glm::mat4 viewProj = proj * view;
 
     mTimer.beginFrame();
     renderShadows(fs);
     renderGBuffer(viewProj);
-    renderIndirect(fs);
+    renderIndirect(fs, view, proj);
+    mSSAO.execute(fs.ssao, mDepth.id(), mNormal.id(), mWidth, mHeight, view, proj, mTimer);
     renderLighting(fs, viewProj);
     renderToneMap(fs);
     mTimer.endFrame();
@@ -319,7 +331,14 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glBindSampler(kUnitBaseColor, 0);
 }
 
-void Renderer::renderIndirect(const FrameSettings& fs) {
+void Renderer::renderIndirect(const FrameSettings& fs, const glm::mat4& view, const glm::mat4& proj) {
+    if (mTechnique) {
+        FrameContext ctx{fs,         *mScene,      view,           proj,          proj * view,
+                         glm::inverse(proj * view), mAlbedo.id(), mNormal.id(), mMaterial.id(), mDepth.id(),
+                         mIndirect.id(),            mWidth,       mHeight,      mTimer};
+        mTechnique->execute(ctx);
+        return;
+    }
     auto pass = mTimer.scope("indirect");
     // Technique none: the indirect term is the constant ambient radiance.
     const glm::vec4 ambient(fs.render.ambient, 1.0f);
@@ -342,6 +361,8 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     }
     glBindTextureUnit(kUnitIndirect, mIndirect.id());
     glBindSampler(kUnitIndirect, mPointSampler.id());
+    glBindTextureUnit(kUnitAO, mSSAO.aoTexture());
+    glBindSampler(kUnitAO, mPointSampler.id());
     glm::mat4 inv = glm::inverse(viewProj);
 
     glDisable(GL_BLEND);
@@ -385,7 +406,7 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
         if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, 0);
     }
     glDisable(GL_BLEND);
-    for (int u = kUnitAlbedo; u <= kUnitShadowCube; ++u) glBindSampler(u, 0);
+    for (int u = kUnitAlbedo; u <= kUnitAO; ++u) glBindSampler(u, 0);
 }
 
 void Renderer::renderToneMap(const FrameSettings& fs) {
@@ -408,6 +429,8 @@ void Renderer::renderToneMap(const FrameSettings& fs) {
 bool Renderer::reloadShaders(std::string& log) {
     bool ok = true;
     log.clear();
+    if (mTechnique && !mTechnique->reloadShaders(log)) ok = false;
+    if (!mSSAO.reloadShaders(log)) ok = false;
     for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
@@ -432,6 +455,9 @@ std::vector<DebugView> Renderer::debugViews() const {
     add("roughnessMetallic", mMaterial, kViewDisplay);
     add("emissive", mEmissive, kViewColor);
     add("indirect", mIndirect, kViewColor);
+    if (mTechnique)
+        for (DebugView& tv : mTechnique->debugViews()) v.push_back(tv);
+    for (DebugView& sv : mSSAO.debugViews()) v.push_back(sv);
     for (size_t i = 0; i < mShadows.size(); ++i) {
         if (!mShadows[i].depth) continue;
         std::string name = "shadow" + std::to_string(i);
@@ -457,6 +483,8 @@ std::vector<PassStats> Renderer::passStats() const {
         else if (r.name == "indirect") bytes = mIndirect.bytes();
         else if (r.name == "lighting") bytes = mHDR.bytes();
         else if (r.name == "tonemap") bytes = mLDR.bytes();
+        else if (r.name == "ssao" || r.name == "ssaoBlur") bytes = r.name == "ssao" ? mSSAO.memoryBytes() : 0;
+        else if (mTechnique) bytes = mTechnique->passMemory(r.name);
         out.push_back({r.name, r.gpuMs, bytes});
     }
     return out;
@@ -464,6 +492,8 @@ std::vector<PassStats> Renderer::passStats() const {
 
 size_t Renderer::memoryBytes() const {
     size_t total = mScene ? mScene->memoryBytes() : 0;
+    if (mTechnique) total += mTechnique->memoryBytes();
+    total += mSSAO.memoryBytes();
     for (auto& s : mShadows) total += s.depth.bytes();
     for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mHDR, &mLDR})
         total += t->bytes();
@@ -510,12 +540,32 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     mViewProg.set("uZoom", std::max(p.zoom, 1e-3f));
     mViewProg.set("uPan", p.pan);
     mViewProg.set("uLevel", p.level);
-    bool cube = view.target == GL_TEXTURE_CUBE_MAP;
-    glBindTextureUnit(cube ? kUnitSourceCube : kUnitSource, view.texture);
-    glBindSampler(cube ? kUnitSourceCube : kUnitSource, mPointSampler.id());
+    mViewProg.set("uAxis", p.axis);
+    mViewProg.set("uSlice", p.slice);
+    mViewProg.set("uSHComponent", p.shComponent);
+    mViewProg.set("uDirection", glm::length(p.direction) > 0.0f ? glm::normalize(p.direction) : glm::vec3(0, 1, 0));
+    mViewProg.set("uFalseColour", p.falseColour ? 1 : 0);
+    mViewProg.set("uScale", view.scale);
+    GLuint units[3] = {GLuint(kUnitSource), 0, 0};
+    int count = 1;
+    if (view.target == GL_TEXTURE_CUBE_MAP) {
+        units[0] = kUnitSourceCube;
+    } else if (view.target == GL_TEXTURE_3D) {
+        units[0] = kUnitSource3D;
+        units[1] = kUnitSource3D + 1;
+        units[2] = kUnitSource3D + 2;
+        count = view.extra[0] ? 3 : 1;
+    }
+    const GLuint textures[3] = {view.texture, view.extra[0], view.extra[1]};
+    for (int i = 0; i < count; ++i) {
+        glBindTextureUnit(units[i], textures[i]);
+        glBindSampler(units[i], mPointSampler.id());
+    }
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    glBindTextureUnit(cube ? kUnitSourceCube : kUnitSource, 0);
-    glBindSampler(cube ? kUnitSourceCube : kUnitSource, 0);
+    for (int i = 0; i < count; ++i) {
+        glBindTextureUnit(units[i], 0);
+        glBindSampler(units[i], 0);
+    }
 }
 
 std::vector<uint8_t> Renderer::renderViewImage(const DebugView& view, int width, int height) const {

@@ -15,8 +15,10 @@
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
 #include "gi/render/render_settings.h"
+#include "gi/render/technique.h"
 #include "gi/scene/camera.h"
 #include "gi/scene/scene.h"
+#include "gi/ssao/ssao.h"
 
 #include <memory>
 #include <span>
@@ -31,6 +33,8 @@ struct DebugView {
     int mode = 0;        // shared::kView*
     int width = 0, height = 0;
     float near = 0.0f, far = 1.0f, range = 1.0f;  // for depth linearisation
+    GLuint extra[2] = {0, 0};  // SH volumes: the G and B coefficient textures (texture holds R)
+    float scale = 1.0f;        // SH volumes: factor from stored values to radiance
 };
 
 struct PassStats {
@@ -112,6 +116,12 @@ public:
         float zoom = 1.0f;
         glm::vec2 pan{0.0f};
         float level = 0.0f;
+        // Volume views: the slice shown and what a voxel shows.
+        int axis = 1;                            // 0 x, 1 y, 2 z: the axis the slice is normal to
+        float slice = 0.5f;                      // 0..1 along that axis
+        int shComponent = -1;                    // -1: irradiance towards `direction`; 0..3: one coefficient
+        glm::vec3 direction{0.0f, 1.0f, 0.0f};   // normal of the surface whose irradiance is shown
+        bool falseColour = false;
     };
     void drawView(const DebugView& view, const ViewParams& params) const;
     // Renders a view into a new RGBA8 image of the given size (bottom row first).
@@ -142,12 +152,15 @@ private:
     CameraSettings mCamera;
 
     gl::GpuTimer mTimer;
+    std::unique_ptr<Technique> mTechnique;
+    SSAO mSSAO;
+    TechniqueKind mTechniqueKind = TechniqueKind::None;
 
     void resize(int width, int height);
     void prepareShadows(const FrameSettings& fs);
     void renderShadows(const FrameSettings& fs);
     void renderGBuffer(const glm::mat4& viewProj);
-    void renderIndirect(const FrameSettings& fs);
+    void renderIndirect(const FrameSettings& fs, const glm::mat4& view, const glm::mat4& proj);
     void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj);
     void renderToneMap(const FrameSettings& fs);
 };

@@ -21,6 +21,7 @@ GI_CONST int kUnitDepth = 4;
 GI_CONST int kUnitIndirect = 5;
 GI_CONST int kUnitShadow2D = 6;
 GI_CONST int kUnitShadowCube = 7;
+GI_CONST int kUnitAO = 8;  // ambient occlusion (gi/ssao), multiplies the indirect term
 // Material base colour texture in the G-buffer and shadow passes.
 GI_CONST int kUnitBaseColor = 0;
 // Source texture of the view and tone-map passes.
@@ -52,6 +53,10 @@ GI_CONST int kViewLinearDepth = 2;  // hyperbolic depth buffer turned into view 
 GI_CONST int kViewRawDepth = 3;     // stored depth as grey
 GI_CONST int kViewCubeCross = 4;    // a cube map unfolded as a cross
 GI_CONST int kViewDisplay = 5;      // already display-encoded (LDR output): no transfer curve
+GI_CONST int kViewPosition = 6;     // world positions: fract(p) as colour, so structure shows at any scale
+GI_CONST int kViewSHVolume = 7;     // a slice of three RGB SH volumes: irradiance or one coefficient
+GI_CONST int kViewVolume = 8;       // a slice of one SH volume (the geometry volume): blocking or a coefficient
+GI_CONST int kUnitSource3D = 2;     // view.frag: R (or the only) volume; G and B on the next two units
 
 #ifdef __cplusplus
 }  // namespace gi::shared

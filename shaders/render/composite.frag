@@ -1,8 +1,10 @@
 // Base of the HDR image: emission plus the indirect term. The indirect texture holds
 // irradiance / pi, so a Lambert surface reflects albedo * indirect; metals have no diffuse.
+// Ambient occlusion (SSAO, any technique) scales the indirect term.
 #include "render/gbuffer_common.glsl"
 
 layout(binding = kUnitIndirect) uniform sampler2D uIndirect;
+layout(binding = kUnitAO) uniform sampler2D uAO;  // 1 everywhere when SSAO is off
 
 in vec2 vUV;
 out vec4 oColor;
@@ -15,6 +17,6 @@ void main() {
         return;
     }
     vec3 emissive = texelFetch(uEmissiveTex, px, 0).rgb;
-    vec3 indirect = texelFetch(uIndirect, px, 0).rgb;
+    vec3 indirect = texelFetch(uIndirect, px, 0).rgb * texelFetch(uAO, px, 0).r;
     oColor = vec4(emissive + s.baseColor * (1.0 - s.metallic) * indirect, 1.0);
 }

@@ -1,10 +1,20 @@
 // Debug views of any texture: channel select, exposure, zoom and pan, depth linearisation and
 // cube maps unfolded as a cross. Used by the editor's buffer previewer and `gi-render --views`.
 #include "common/shared.h"
+#include "common/sh.h"
 #include "common/color.glsl"
 
 layout(binding = kUnitSource) uniform sampler2D uSource;
 layout(binding = kUnitSourceCube) uniform samplerCube uSourceCube;
+layout(binding = kUnitSource3D) uniform sampler3D uVolumeR;
+layout(binding = kUnitSource3D + 1) uniform sampler3D uVolumeG;
+layout(binding = kUnitSource3D + 2) uniform sampler3D uVolumeB;
+uniform int uAxis;           // volume views: slice normal axis
+uniform float uSlice;        // volume views: slice position 0..1
+uniform int uSHComponent;    // -1: irradiance / blocking towards uDirection; else that coefficient
+uniform vec3 uDirection;
+uniform bool uFalseColour;
+uniform float uScale;        // stored value to radiance
 uniform int uMode;
 uniform vec4 uChannelMask;   // (1,1,1,0) shows RGB; a single 1 shows that channel as grey
 uniform float uExposureScale;
@@ -17,6 +27,8 @@ uniform float uLevel;        // mip level
 
 in vec2 vUV;
 out vec4 oColor;
+
+const float kPiView = 3.14159265358979;
 
 vec3 cubeCross(vec2 uv, out bool inside) {
     // 4 x 3 cross: row 1 holds -X +Z +X -Z; +Y above +Z, -Y below.
@@ -35,6 +47,18 @@ vec3 cubeCross(vec2 uv, out bool inside) {
     return vec3(0.0, 0.0, 1.0);
 }
 
+// A blue-green-yellow-red ramp for magnitudes in [0, 1].
+vec3 falseColour(float x) {
+    x = clamp(x, 0.0, 1.0);
+    return clamp(vec3(1.5 - abs(4.0 * x - 3.0), 1.5 - abs(4.0 * x - 2.0), 1.5 - abs(4.0 * x - 1.0)), 0.0, 1.0);
+}
+
+vec3 volumeCoord(vec2 uv) {
+    if (uAxis == 0) return vec3(uSlice, uv.y, uv.x);
+    if (uAxis == 2) return vec3(uv, uSlice);
+    return vec3(uv.x, uSlice, uv.y);
+}
+
 void main() {
     vec2 uv = (vUV - 0.5) / uZoom + 0.5 + uPan;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
@@ -43,6 +67,23 @@ void main() {
         return;
     }
     vec4 v;
+    if (uMode == kViewSHVolume || uMode == kViewVolume) {
+        vec3 p = volumeCoord(uv);
+        vec3 c;
+        if (uMode == kViewSHVolume) {
+            vec4 r = texture(uVolumeR, p), g = texture(uVolumeG, p), b = texture(uVolumeB, p);
+            if (uSHComponent >= 0) c = vec3(r[uSHComponent], g[uSHComponent], b[uSHComponent]) * uScale;
+            // Irradiance on a surface facing uDirection: light travelling along -uDirection.
+            else c = max(vec3(dot(r, shCosLobe(-uDirection)), dot(g, shCosLobe(-uDirection)), dot(b, shCosLobe(-uDirection))), 0.0) * uScale / kPiView;
+        } else {
+            vec4 gv = texture(uVolumeR, p);
+            c = vec3(uSHComponent >= 0 ? gv[uSHComponent] : clamp(shEval(gv, -uDirection), 0.0, 1.0));
+        }
+        c *= uExposureScale;
+        float m = max(c.r, max(c.g, c.b));
+        oColor = vec4(uFalseColour ? falseColour(m) : linearToSRGB(c), 1.0);
+        return;
+    }
     if (uMode == kViewCubeCross) {
         bool inside;
         vec3 dir = cubeCross(vec2(uv.x, 1.0 - uv.y), inside);
@@ -59,6 +100,8 @@ void main() {
     bool single = dot(uChannelMask, vec4(1.0)) < 1.5;
     if (uMode == kViewNormal) {
         c = v.xyz * 0.5 + 0.5;
+    } else if (uMode == kViewPosition) {
+        c = v.w > 0.0 ? fract(v.xyz) : vec3(0.0);
     } else if (uMode == kViewLinearDepth) {
         float z = v.r * 2.0 - 1.0;
         float linear = 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));

@@ -1,0 +1,440 @@
+#include "gi/lpv/lpv.h"
+
+#include "common/shared.h"
+#include "gi/render/renderer.h"
+#include "gi/scene/camera.h"
+#include "gi/util/error.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+namespace gi {
+
+namespace {
+
+constexpr int kCoefficients = 12;  // 4 SH coefficients x RGB per cell
+constexpr size_t kRSMBytesPerTexel = 8 + 8 + 16 + 4;
+
+size_t cells(int res) { return size_t(res) * res * res; }
+size_t corners(int res) { return size_t(res + 1) * (res + 1) * (res + 1); }
+
+gl::Buffer zeroBuffer(size_t bytes) {
+    return gl::createBuffer(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+}
+
+void clearBuffer(const gl::Buffer& b) { glClearNamedBufferData(b.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr); }
+
+GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
+
+bool hasRSM(const LightSettings& l) { return l.type != LightType::Point; }
+
+}  // namespace
+
+std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
+                                    const glm::vec3& camera) {
+    std::vector<CascadeBox> boxes;
+    glm::vec3 size = sceneMax - sceneMin;
+    float sceneSize = std::max(std::max(size.x, size.y), std::max(size.z, 1e-3f));
+    if (s.cascadeCount == 1 && s.cascadeExtent <= 0.0f) {
+        // One grid: the scene's bounding cube, a little larger so surfaces on the bounds are inside.
+        CascadeBox b;
+        b.extent = sceneSize * 1.02f;
+        b.cellSize = b.extent / float(s.gridResolution);
+        b.min = 0.5f * (sceneMin + sceneMax) - glm::vec3(0.5f * b.extent);
+        boxes.push_back(b);
+        return boxes;
+    }
+    float finest = s.cascadeExtent > 0.0f ? s.cascadeExtent : sceneSize / float(1 << (s.cascadeCount - 1));
+    for (int k = 0; k < s.cascadeCount; ++k) {
+        CascadeBox b;
+        b.extent = finest * float(1 << k);
+        b.cellSize = b.extent / float(s.gridResolution);
+        // Snapped to whole cells of this cascade, so moving the camera never shifts the lattice.
+        b.min = glm::floor(camera / b.cellSize - glm::vec3(0.5f * float(s.gridResolution))) * b.cellSize;
+        boxes.push_back(b);
+    }
+    return boxes;
+}
+
+LPV::LPV()
+    : mRSMProg("lpv.rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}),
+      mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}),
+      mGeometryProg("lpv.geometry", {{GL_COMPUTE_SHADER, "lpv/geometry.comp"}}),
+      mGeometryResolveProg("lpv.geometryResolve", {{GL_COMPUTE_SHADER, "lpv/geometry_resolve.comp"}}),
+      mTransmitProg("lpv.transmit", {{GL_COMPUTE_SHADER, "lpv/transmit.comp"}}),
+      mPropagateProg("lpv.propagate", {{GL_COMPUTE_SHADER, "lpv/propagate.comp"}}),
+      mResolveProg("lpv.resolve", {{GL_COMPUTE_SHADER, "lpv/resolve.comp"}}),
+      mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}) {
+    GLuint s = 0;
+    glCreateSamplers(1, &s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glSamplerParameteri(s, w, GL_CLAMP_TO_EDGE);
+    mLinear = gl::Sampler(s);
+}
+
+LPV::~LPV() = default;
+
+size_t LPV::estimateBytes(const FrameSettings& fs) {
+    const LPVSettings& s = fs.lpv;
+    size_t perCascade = 4 * cells(s.gridResolution) * kCoefficients * 4  // inject, ping, pong, accum
+                        + 2 * corners(s.gridResolution) * 4 * 4           // geometry from RSMs and G-buffer
+                        + 3 * cells(s.gridResolution) * 8                 // SH textures
+                        + 2 * corners(s.gridResolution) * 8               // geometry textures
+                        + cells(s.gridResolution) * 32;                   // face transmittance
+    size_t rsmLights = 0;
+    for (const auto& l : fs.lights) rsmLights += hasRSM(l);
+    size_t rsm = rsmLights * size_t(s.cascadeCount) * size_t(s.rsmResolution) * s.rsmResolution * kRSMBytesPerTexel;
+    return perCascade * size_t(s.cascadeCount) + rsm;
+}
+
+void LPV::allocate(const FrameSettings& fs) {
+    const LPVSettings& s = fs.lpv;
+    size_t rsmCount = 0;
+    for (const auto& l : fs.lights) rsmCount += hasRSM(l) ? size_t(s.cascadeCount) : 0;
+    bool volumes = s.gridResolution != mResolution || int(mCascadeData.size()) != s.cascadeCount;
+    bool rsms = s.rsmResolution != mRSMResolution || rsmCount != mRSMs.size();
+    if (volumes) {
+        mResolution = s.gridResolution;
+        mCascadeData.clear();
+        mVolumeBytes = mGeometryBytes = 0;
+        int r = mResolution;
+        for (int k = 0; k < s.cascadeCount; ++k) {
+            Cascade c;
+            size_t shBytes = cells(r) * kCoefficients * 4;
+            c.inject = zeroBuffer(shBytes);
+            c.ping = zeroBuffer(shBytes);
+            c.pong = zeroBuffer(shBytes);
+            c.accum = zeroBuffer(shBytes);
+            c.geometryRSM = zeroBuffer(corners(r) * 16);
+            c.geometryGBuffer = zeroBuffer(corners(r) * 16);
+            c.transmit = zeroBuffer(cells(r) * 32);
+            c.shR = gl::Texture::create3D(GL_RGBA16F, r, r, r);
+            c.shG = gl::Texture::create3D(GL_RGBA16F, r, r, r);
+            c.shB = gl::Texture::create3D(GL_RGBA16F, r, r, r);
+            c.geometryRSMVolume = gl::Texture::create3D(GL_RGBA16F, r + 1, r + 1, r + 1);
+            c.geometryGBufferVolume = gl::Texture::create3D(GL_RGBA16F, r + 1, r + 1, r + 1);
+            mVolumeBytes += 4 * shBytes + c.shR.bytes() * 3;
+            mGeometryBytes += 2 * corners(r) * 16 + 2 * c.geometryRSMVolume.bytes() + cells(r) * 32;
+            mCascadeData.push_back(std::move(c));
+        }
+    }
+    if (rsms) {
+        mRSMResolution = s.rsmResolution;
+        mRSMs.clear();
+        mRSMBytes = 0;
+        int n = mRSMResolution;
+        for (size_t i = 0; i < rsmCount; ++i) {
+            RSM m;
+            m.flux = gl::Texture::create2D(GL_RGBA16F, n, n);
+            m.normal = gl::Texture::create2D(GL_RGBA16F, n, n);
+            m.position = gl::Texture::create2D(GL_RGBA32F, n, n);
+            m.depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, n, n);
+            m.fbo = gl::createFramebuffer();
+            glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT0, m.flux.id(), 0);
+            glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT1, m.normal.id(), 0);
+            glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT2, m.position.id(), 0);
+            glNamedFramebufferTexture(m.fbo.id(), GL_DEPTH_ATTACHMENT, m.depth.id(), 0);
+            const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+            glNamedFramebufferDrawBuffers(m.fbo.id(), 3, bufs);
+            GI_ASSERT(glCheckNamedFramebufferStatus(m.fbo.id(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "RSM framebuffer");
+            mRSMBytes += m.flux.bytes() + m.normal.bytes() + m.position.bytes() + m.depth.bytes();
+            mRSMs.push_back(std::move(m));
+        }
+    }
+}
+
+void LPV::execute(const FrameContext& ctx) {
+    allocate(ctx.settings);
+    const Bounds& b = ctx.scene.bounds();
+    mBoxes = lpvCascades(ctx.settings.lpv, b.min, b.max, ctx.settings.camera.eye);
+    renderRSMs(ctx);
+    inject(ctx);
+    buildGeometry(ctx);
+    propagate(ctx);
+    shade(ctx);
+}
+
+void LPV::renderRSMs(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("lpv.rsm");
+    const FrameSettings& fs = ctx.settings;
+    const Bounds& bounds = ctx.scene.bounds();
+    float sceneRadius = std::max(0.5f * glm::length(bounds.extent()), 1e-3f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glViewport(0, 0, mRSMResolution, mRSMResolution);
+    mRSMProg.use();
+    size_t index = 0;
+    for (size_t li = 0; li < fs.lights.size(); ++li) {
+        const LightSettings& l = fs.lights[li];
+        if (!hasRSM(l)) continue;
+        glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+        glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+        for (size_t k = 0; k < mBoxes.size(); ++k, ++index) {
+            RSM& m = mRSMs[index];
+            m.light = int(li);
+            m.cascade = int(k);
+            const CascadeBox& box = mBoxes[k];
+            if (l.type == LightType::Directional) {
+                // The seed's fit: the extent of the cascade's corners projected on the light's plane.
+                glm::vec3 c = box.center();
+                float back = glm::length(bounds.center() - c) + sceneRadius + box.extent;
+                glm::mat4 view = glm::lookAt(c - dir * back, c, up);
+                float half = 0.0f;
+                for (int i = 0; i < 8; ++i) {
+                    glm::vec3 corner = box.min + box.extent * glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+                    glm::vec4 v = view * glm::vec4(corner, 1.0f);
+                    half = std::max(half, std::max(std::abs(v.x), std::abs(v.y)));
+                }
+                m.viewProj = glm::ortho(-half, half, -half, half, back * 0.01f, back * 2.0f + box.extent) * view;
+                float texel = 2.0f * half / float(mRSMResolution);
+                m.texelArea = texel * texel;
+                m.texelSolidAngle = 0.0f;
+            } else {
+                float fov = std::min(2.0f * l.outerConeDeg + 2.0f, 170.0f);
+                float far = glm::length(l.position - bounds.center()) + sceneRadius;
+                m.viewProj = glm::perspective(glm::radians(fov), 1.0f, far * 1e-3f, far) * glm::lookAt(l.position, l.position + dir, up);
+                float t = 2.0f * std::tan(glm::radians(fov) * 0.5f) / float(mRSMResolution);
+                m.texelArea = 0.0f;
+                m.texelSolidAngle = t * t;
+            }
+            glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
+            const float zero[4] = {0, 0, 0, 0};
+            for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
+            const float one = 1.0f;
+            glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
+            mRSMProg.set("uLightViewProj", m.viewProj);
+            mRSMProg.set("uLightType", int(l.type));
+            mRSMProg.set("uLightColor", l.color * l.intensity);
+            mRSMProg.set("uLightPos", l.position);
+            mRSMProg.set("uLightDir", dir);
+            mRSMProg.set("uLightRange", l.range);
+            mRSMProg.set("uCosInner", std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg))));
+            mRSMProg.set("uCosOuter", std::cos(glm::radians(l.outerConeDeg)));
+            mRSMProg.set("uTexelArea", m.texelArea);
+            mRSMProg.set("uTexelSolidAngle", m.texelSolidAngle);
+            ctx.scene.draw([&](const Material& mat, int) {
+                mRSMProg.set("uBaseColor", mat.baseColor);
+                mRSMProg.set("uMetallic", mat.metallic);
+                mRSMProg.set("uHasTexture", mat.baseColorTexture >= 0 ? 1 : 0);
+                mRSMProg.set("uAlphaCutoff", mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f);
+                if (mat.baseColorTexture >= 0) glBindTextureUnit(shared::kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
+            });
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void LPV::inject(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("lpv.inject");
+    const LPVSettings& s = ctx.settings.lpv;
+    for (auto& c : mCascadeData) clearBuffer(c.inject);
+    mInjectProg.use();
+    mInjectProg.set("uResolution", mResolution);
+    mInjectProg.set("uRSMResolution", mRSMResolution);
+    for (const RSM& m : mRSMs) {
+        const CascadeBox& box = mBoxes[m.cascade];
+        mInjectProg.set("uGridMin", box.min);
+        mInjectProg.set("uCellSize", box.cellSize);
+        mInjectProg.set("uNudge", s.nudge);
+        glBindImageTexture(0, m.flux.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(1, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(2, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mCascadeData[m.cascade].inject.id());
+        glDispatchCompute(groups(mRSMResolution, 8), groups(mRSMResolution, 8), 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void LPV::buildGeometry(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("lpv.geometry");
+    for (auto& c : mCascadeData) {
+        clearBuffer(c.geometryRSM);
+        clearBuffer(c.geometryGBuffer);
+    }
+    if (!ctx.settings.lpv.occlusion) {
+        const float zero[4] = {0, 0, 0, 0};
+        for (auto& c : mCascadeData) {
+            glClearTexImage(c.geometryRSMVolume.id(), 0, GL_RGBA, GL_FLOAT, zero);
+            glClearTexImage(c.geometryGBufferVolume.id(), 0, GL_RGBA, GL_FLOAT, zero);
+        }
+        return;
+    }
+    mGeometryProg.use();
+    mGeometryProg.set("uResolution", mResolution);
+    // Surfels from the RSMs.
+    mGeometryProg.set("uFromGBuffer", 0);
+    mGeometryProg.set("uSourceSize", glm::ivec2(mRSMResolution));
+    for (const RSM& m : mRSMs) {
+        const CascadeBox& box = mBoxes[m.cascade];
+        mGeometryProg.set("uGridMin", box.min);
+        mGeometryProg.set("uCellSize", box.cellSize);
+        glBindImageTexture(1, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(2, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mCascadeData[m.cascade].geometryRSM.id());
+        glDispatchCompute(groups(mRSMResolution, 8), groups(mRSMResolution, 8), 1);
+    }
+    // Surfels from the camera's G-buffer, subsampled to about 128 x 128 samples.
+    int stride = std::max(1, std::max(ctx.width, ctx.height) / 128);
+    mGeometryProg.set("uFromGBuffer", 1);
+    mGeometryProg.set("uStride", stride);
+    mGeometryProg.set("uSourceSize", glm::ivec2(ctx.width, ctx.height));
+    mGeometryProg.set("uInvViewProj", ctx.invViewProj);
+    mGeometryProg.set("uCameraPos", ctx.settings.camera.eye);
+    mGeometryProg.set("uPixelAngle", 2.0f * std::tan(glm::radians(ctx.settings.camera.fovY) * 0.5f) / float(ctx.height));
+    glBindTextureUnit(shared::kUnitNormal, ctx.normal);
+    glBindTextureUnit(shared::kUnitDepth, ctx.depth);
+    for (size_t k = 0; k < mCascadeData.size(); ++k) {
+        mGeometryProg.set("uGridMin", mBoxes[k].min);
+        mGeometryProg.set("uCellSize", mBoxes[k].cellSize);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mCascadeData[k].geometryGBuffer.id());
+        glDispatchCompute(groups(groups(ctx.width, stride), 8), groups(groups(ctx.height, stride), 8), 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    mGeometryResolveProg.use();
+    mGeometryResolveProg.set("uResolution", mResolution);
+    for (auto& c : mCascadeData) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.geometryRSM.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.geometryGBuffer.id());
+        glBindImageTexture(0, c.geometryRSMVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(1, c.geometryGBufferVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        GLuint g = groups(mResolution + 1, 4);
+        glDispatchCompute(g, g, g);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+void LPV::propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, int resolution, bool blocking) {
+    mPropagateProg.use();
+    mPropagateProg.set("uResolution", resolution);
+    mPropagateProg.set("uBlocking", blocking ? 1 : 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, src);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, dst);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, accum);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, transmit);
+    GLuint g = groups(resolution, 4);
+    glDispatchCompute(g, g, g);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void LPV::propagate(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("lpv.propagate");
+    const LPVSettings& s = ctx.settings.lpv;
+    size_t bytes = cells(mResolution) * kCoefficients * 4;
+    if (s.occlusion) {
+        mTransmitProg.use();
+        mTransmitProg.set("uResolution", mResolution);
+        mTransmitProg.set("uOcclusionStrength", s.occlusionStrength);
+        glBindSampler(0, mLinear.id());
+        glBindSampler(1, mLinear.id());
+        for (auto& c : mCascadeData) {
+            glBindTextureUnit(0, c.geometryRSMVolume.id());
+            glBindTextureUnit(1, c.geometryGBufferVolume.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.transmit.id());
+            GLuint g = groups(mResolution, 4);
+            glDispatchCompute(g, g, g);
+        }
+        glBindSampler(0, 0);
+        glBindSampler(1, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    for (auto& c : mCascadeData) {
+        glCopyNamedBufferSubData(c.inject.id(), c.accum.id(), 0, 0, GLsizeiptr(bytes));
+        GLuint src = c.inject.id(), dst = c.ping.id();
+        for (int step = 0; step < s.propagationSteps; ++step) {
+            propagateStep(src, dst, c.accum.id(), c.transmit.id(), mResolution, s.occlusion && step > 0);
+            src = dst;
+            dst = dst == c.ping.id() ? c.pong.id() : c.ping.id();
+        }
+    }
+    mResolveProg.use();
+    mResolveProg.set("uResolution", mResolution);
+    for (auto& c : mCascadeData) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.accum.id());
+        glBindImageTexture(0, c.shR.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(1, c.shG.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(2, c.shB.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        GLuint g = groups(mResolution, 4);
+        glDispatchCompute(g, g, g);
+    }
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void LPV::shade(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("lpv.shade");
+    const LPVSettings& s = ctx.settings.lpv;
+    mShadeProg.use();
+    mShadeProg.set("uInvViewProj", ctx.invViewProj);
+    mShadeProg.set("uCascadeCount", int(mBoxes.size()));
+    mShadeProg.set("uIntensity", s.intensity);
+    mShadeProg.set("uDamping", s.damping);
+    mShadeProg.set("uSize", glm::ivec2(ctx.width, ctx.height));
+    for (size_t k = 0; k < mBoxes.size(); ++k) {
+        std::string i = "[" + std::to_string(k) + "]";
+        glProgramUniform4f(mShadeProg.id(), mShadeProg.location(("uCascadeMinCell" + i).c_str()), mBoxes[k].min.x,
+                           mBoxes[k].min.y, mBoxes[k].min.z, mBoxes[k].cellSize);
+        const Cascade& c = mCascadeData[k];
+        for (int ch = 0; ch < 3; ++ch) {
+            GLuint unit = GLuint(8 + k * 3 + ch);
+            glBindTextureUnit(unit, ch == 0 ? c.shR.id() : ch == 1 ? c.shG.id() : c.shB.id());
+            glBindSampler(unit, mLinear.id());
+        }
+    }
+    mShadeProg.set("uResolution", mResolution);
+    glBindTextureUnit(shared::kUnitNormal, ctx.normal);
+    glBindTextureUnit(shared::kUnitDepth, ctx.depth);
+    glBindImageTexture(0, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups(ctx.width, 8), groups(ctx.height, 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (GLuint unit = 8; unit < 20; ++unit) glBindSampler(unit, 0);
+}
+
+std::vector<DebugView> LPV::debugViews() const {
+    std::vector<DebugView> v;
+    for (const RSM& m : mRSMs) {
+        std::string suffix = std::to_string(m.light) + "c" + std::to_string(m.cascade);
+        int n = mRSMResolution;
+        v.push_back({"lpv.rsmFlux" + suffix, m.flux.id(), GL_TEXTURE_2D, shared::kViewColor, n, n, 0, 1, 1});
+        v.push_back({"lpv.rsmNormal" + suffix, m.normal.id(), GL_TEXTURE_2D, shared::kViewNormal, n, n, 0, 1, 1});
+        v.push_back({"lpv.rsmPosition" + suffix, m.position.id(), GL_TEXTURE_2D, shared::kViewPosition, n, n, 0, 1, 1});
+    }
+    for (size_t k = 0; k < mCascadeData.size(); ++k) {
+        const Cascade& c = mCascadeData[k];
+        DebugView sh{"lpv.volume" + std::to_string(k), c.shR.id(), GL_TEXTURE_3D, shared::kViewSHVolume, 512, 512, 0, 1, 1};
+        sh.extra[0] = c.shG.id();
+        sh.extra[1] = c.shB.id();
+        sh.scale = 1.0f / (mBoxes.empty() ? 1.0f : mBoxes[k].cellSize * mBoxes[k].cellSize);
+        v.push_back(sh);
+        v.push_back({"lpv.geometryRSM" + std::to_string(k), c.geometryRSMVolume.id(), GL_TEXTURE_3D, shared::kViewVolume, 512, 512, 0, 1, 1});
+        v.push_back({"lpv.geometryGBuffer" + std::to_string(k), c.geometryGBufferVolume.id(), GL_TEXTURE_3D, shared::kViewVolume, 512,
+                     512, 0, 1, 1});
+    }
+    return v;
+}
+
+size_t LPV::passMemory(const std::string& pass) const {
+    if (pass == "lpv.rsm") return mRSMBytes;
+    if (pass == "lpv.geometry") return mGeometryBytes;
+    if (pass == "lpv.propagate") return mVolumeBytes;
+    return 0;
+}
+
+size_t LPV::memoryBytes() const { return mRSMBytes + mVolumeBytes + mGeometryBytes; }
+
+bool LPV::reloadShaders(std::string& log) {
+    bool ok = true;
+    for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
+                           &mResolveProg,
+                           &mShadeProg})
+        if (!p->reload()) {
+            ok = false;
+            log += p->log() + "\n";
+        }
+    return ok;
+}
+
+}  // namespace gi

@@ -1,0 +1,116 @@
+// Light propagation volumes (Kaplanyan and Dachsbacher 2009/2010, "KD09"), as seed 000 section 1
+// implements them, with compute shaders throughout.
+//
+// Passes, per cascade (timer names in brackets):
+//   1. RSMs [lpv.rsm]: per directional or spot light, a reflective shadow map storing world
+//      position, normal and flux. Directional maps are fitted to the cascade box as the seed
+//      does (the extent of the box's corners projected on the plane normal to the light); a
+//      spot light uses its own frustum. Point lights are left out: a cube RSM is future work,
+//      and the editor says so.
+//   2. Injection [lpv.inject]: each RSM texel becomes a virtual point light, moved `nudge`
+//      cells along its normal, added to its cell as intensity I(w) = flux / pi * max(n.w, 0)
+//      projected on 2-band SH, one SH per colour channel.
+//   3. Geometry volume [lpv.geometry]: blocking potential from RSM texels and (subsampled)
+//      G-buffer pixels: each surfel adds (area / cell face area) * the SH of its clamped cosine
+//      lobe, on a grid whose samples sit on the LPV cell corners (offset half a cell). Blocking is
+//      one-sided (a surfel blocks light hitting its front) and the two sources often see opposite
+//      sides of a thin wall, or the same surface: they stay in two volumes and each face takes
+//      the larger of their blockings, so a thin wall blocks both ways and nothing counts twice.
+//   4. Propagation [lpv.propagate]: once per frame, the transmittance of every cell face from the
+//      geometry volume; then the gather steps. Each cell takes from its 6 neighbours the flux
+//      through its faces: the face it shares with the neighbour (solid angle 0.4006696846) and the
+//      4 side faces (0.4234413544), each re-emitted as a clamped cosine lobe towards that face,
+//      weighted by 1 - blocking on the shared face (the 2-band lobe's constant term removed, so a
+//      wall does not block light running along it). No blocking in the first step (the
+//      injected light would block itself). The result of every step is added to an accumulator.
+//   5. Shading [lpv.shade]: per pixel, the finest cascade containing the point, blended towards
+//      the next over the outer tenth of the cascade (LH04), trilinear SH lookups half a cell in
+//      front of the surface (its own blocking sits on the corners around it), irradiance
+//      E = dot(L, cosLobe(-N)) with radiance L = intensity / cell face area, written as E / pi.
+//
+// Choices where the seed is silent (documented and tested):
+//   - Flux per RSM texel is physical: albedo * light * projected texel area (directional) or
+//     albedo * intensity * texel solid angle (spot), so the result does not depend on the RSM
+//     size. The seed's weight lpvRes^2 / (rsmW * rsmH) is not used; `intensity` scales the result.
+//   - Float atomics are emulated with atomicCompSwap on a uint SSBO (exact under contention).
+//   - Cascades: with cascadeExtent 0 and one cascade, the grid is the scene's bounding cube;
+//     with several, the finest spans the scene's largest side / 2^(count-1), all centred on the
+//     camera and snapped to whole cells of their own size so they do not flicker.
+//   - Self-illumination damping (KD09 section 5): where the irradiance towards the surface
+//     grows behind it (P - N * half a cell) compared to in front (P + N * half a cell), the light
+//     mostly comes from the surface's own VPLs; it is scaled by front/back, blended by `damping`.
+// Known artefacts: light leaks through walls thinner than a cell (the geometry volume reduces
+// them), one-cell blur of the injected light, energy spreading with many steps.
+#pragma once
+
+#include "gi/gl/handle.h"
+#include "gi/gl/shader.h"
+#include "gi/render/technique.h"
+
+#include <glm/glm.hpp>
+
+namespace gi {
+
+struct CascadeBox {
+    glm::vec3 min{0.0f};
+    float cellSize = 1.0f;
+    float extent = 1.0f;  // cellSize * resolution
+    glm::vec3 center() const { return min + glm::vec3(0.5f * extent); }
+};
+
+// The cascade boxes for a frame (exposed for tests and the editor's overlay).
+std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
+                                    const glm::vec3& camera);
+
+class LPV : public Technique {
+public:
+    LPV();
+    ~LPV() override;
+
+    static size_t estimateBytes(const FrameSettings& fs);
+
+    void execute(const FrameContext& ctx) override;
+    std::vector<DebugView> debugViews() const override;
+    size_t passMemory(const std::string& pass) const override;
+    size_t memoryBytes() const override;
+    bool reloadShaders(std::string& log) override;
+
+    const std::vector<CascadeBox>& cascades() const { return mBoxes; }
+
+    // One propagation step on SSBOs of 12 floats per cell (RGB x 4 SH coefficients): gathers
+    // `src` into `dst` and adds `dst` to `accum`; `transmit` (8 floats per cell, from the geometry
+    // volume) is read when `blocking`. execute() runs it; tests call it directly.
+    void propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, int resolution, bool blocking);
+
+private:
+    struct RSM {
+        gl::Texture flux, normal, position, depth;
+        gl::Framebuffer fbo;
+        glm::mat4 viewProj{1.0f};
+        float texelArea = 0.0f;  // directional: projected world area of a texel
+        float texelSolidAngle = 0.0f;  // spot: solid angle of a centre texel
+        int light = 0, cascade = 0;
+    };
+    struct Cascade {
+        gl::Buffer inject, ping, pong, accum, geometryRSM, geometryGBuffer, transmit;
+        gl::Texture shR, shG, shB, geometryRSMVolume, geometryGBufferVolume;
+    };
+
+    gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mResolveProg,
+        mShadeProg;
+    std::vector<Cascade> mCascadeData;
+    std::vector<CascadeBox> mBoxes;
+    std::vector<RSM> mRSMs;
+    int mResolution = 0, mRSMResolution = 0;
+    size_t mRSMBytes = 0, mVolumeBytes = 0, mGeometryBytes = 0;
+    gl::Sampler mLinear;
+
+    void allocate(const FrameSettings& fs);
+    void renderRSMs(const FrameContext& ctx);
+    void inject(const FrameContext& ctx);
+    void buildGeometry(const FrameContext& ctx);
+    void propagate(const FrameContext& ctx);
+    void shade(const FrameContext& ctx);
+};
+
+}  // namespace gi

@@ -1,0 +1,37 @@
+// Settings of light propagation volumes (gi/lpv/lpv.h describes the technique).
+#pragma once
+
+#include "gi/preset/settings.h"
+
+namespace gi {
+
+struct LPVSettings {
+    static constexpr std::string_view kSection = "lpv";
+    int gridResolution = 32;      // cells per side of every cascade
+    int cascadeCount = 1;         // nested grids, each twice the size of the previous
+    float cascadeExtent = 0.0f;   // world size of the finest cascade; 0 fits the scene (see lpv.h)
+    int propagationSteps = 32;    // gather iterations; light travels one cell per step, so about gridResolution
+    int rsmResolution = 256;      // reflective shadow map texels per side, per light and cascade
+    float nudge = 0.5f;           // VPLs move this many cells along their normal before injection
+    bool occlusion = true;        // block propagation with the geometry volume
+    float occlusionStrength = 1.0f;  // scale of the blocking potential
+    float intensity = 1.0f;       // scale of the indirect light
+    float damping = 0.5f;         // self-illumination damping, 0 (off) to 1
+
+    template <class V>
+    void visit(V&& v) {
+        v(gridResolution, {"gridResolution", "Cells per side of each cascade", "cells", 4, 256, Cost::Reallocate, 1});
+        v(cascadeCount, {"cascadeCount", "Number of nested cascades, each doubling the extent", "", 1, 4, Cost::Reallocate});
+        v(cascadeExtent, {"cascadeExtent", "World size of the finest cascade (0: fit the scene)", "m", 0, 1e5});
+        v(propagationSteps, {"propagationSteps", "Propagation iterations (light moves one cell per step)", "", 0, 512});
+        v(rsmResolution, {"rsmResolution", "Reflective shadow map resolution per light and cascade", "px", 16, 4096,
+                          Cost::Reallocate, 16});
+        v(nudge, {"nudge", "Move VPLs along their normal before injection", "cells", 0, 4});
+        v(occlusion, {"occlusion", "Block propagation with the geometry volume", ""});
+        v(occlusionStrength, {"occlusionStrength", "Scale of the geometry volume's blocking", "", 0, 8});
+        v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
+        v(damping, {"damping", "Self-illumination damping (0 off, 1 full)", "", 0, 1});
+    }
+};
+
+}  // namespace gi

@@ -1,0 +1,199 @@
+#include "gi/ssao/ssao.h"
+
+#include "gi/render/renderer.h"
+#include "gi/util/error.h"
+#include "ssao/ssao_shared.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace gi {
+
+using namespace shared;
+
+namespace {
+
+// Uniform floats in [0, 1) from mt19937's raw output, whose sequence the standard fixes; the
+// std distributions are implementation-defined and would differ between standard libraries.
+class Random {
+public:
+    explicit Random(uint32_t seed) : mEngine(seed) {}
+    float uniform() { return float(mEngine() >> 8) * 0x1p-24f; }
+    uint32_t below(uint32_t n) { return uint32_t(mEngine() % n); }
+
+private:
+    std::mt19937 mEngine;
+};
+
+gl::Program fullscreenProgram(const char* name, const char* frag) {
+    return gl::Program(name, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, frag}});
+}
+
+void checkFramebuffer(GLuint fbo, const char* what) {
+    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    GI_ASSERT(status == GL_FRAMEBUFFER_COMPLETE, what);
+}
+
+// Both targets are R8: visibility needs no more than 8 bits once blurred.
+constexpr GLenum kFormat = GL_R8;
+
+}  // namespace
+
+std::vector<glm::vec3> ssaoKernel(int count, uint32_t seed) {
+    GI_ASSERT(count > 0, "ssaoKernel needs at least one sample");
+    Random rng(seed);
+    std::vector<glm::vec3> kernel;
+    kernel.reserve(size_t(count));
+    for (int i = 0; i < count; ++i) {
+        glm::vec3 d;
+        do {
+            d = glm::vec3(rng.uniform() * 2.0f - 1.0f, rng.uniform() * 2.0f - 1.0f, rng.uniform());
+        } while (glm::dot(d, d) < 1e-8f);
+        // Chapman's accelerating scale lerp(0.1, 1, t^2) as the length, with t stratified and
+        // jittered: more samples near the pixel, where occluders matter most, yet some reach the
+        // full radius. (Chapman multiplies by a further random length, which leaves a mean reach
+        // of 0.2 radius and barely darkens creases.)
+        float t = (float(i) + rng.uniform()) / float(count);
+        d = glm::normalize(d) * (0.1f + 0.9f * t * t);
+        kernel.push_back(d);
+    }
+    return kernel;
+}
+
+std::array<glm::vec2, 16> ssaoNoise(uint32_t seed) {
+    static_assert(kSSAONoiseSize * kSSAONoiseSize == 16, "the noise tile is 4x4");
+    // Second stream of the same seed, so the tile does not repeat the kernel's first numbers.
+    Random rng(seed ^ 0x9e3779b9u);
+    std::array<float, 16> angles;
+    for (int k = 0; k < 16; ++k) angles[k] = (float(k) + rng.uniform()) / 16.0f * glm::two_pi<float>();
+    for (uint32_t k = 15; k > 0; --k) std::swap(angles[k], angles[rng.below(k + 1)]);  // Fisher-Yates
+    std::array<glm::vec2, 16> noise;
+    for (int k = 0; k < 16; ++k) noise[k] = glm::vec2(std::cos(angles[k]), std::sin(angles[k]));
+    return noise;
+}
+
+SSAO::SSAO()
+    : mSSAOProg(fullscreenProgram("ssao", "ssao/ssao.frag")),
+      mBlurProg(fullscreenProgram("ssaoBlur", "ssao/ssao_blur.frag")) {
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    mEmptyVAO = gl::VertexArray(vao);
+    GLuint s = 0;
+    glCreateSamplers(1, &s);
+    mPointSampler = gl::Sampler(s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+size_t SSAO::estimateBytes(int width, int height) {
+    return 2 * gl::bytesPerTexel(kFormat) * size_t(std::max(width, 0)) * size_t(std::max(height, 0));
+}
+
+void SSAO::resize(int width, int height) {
+    if (width == mWidth && height == mHeight) return;
+    mWidth = width;
+    mHeight = height;
+    // Grey swizzle: previewers and composites that read .rgb see the AO, not a red image.
+    const GLint swizzle[4] = {GL_RED, GL_RED, GL_RED, GL_ONE};
+    mRaw = gl::Texture::create2D(kFormat, width, height);
+    mAO = gl::Texture::create2D(kFormat, width, height);
+    for (GLuint t : {mRaw.id(), mAO.id()}) glTextureParameteriv(t, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
+    mRawFBO = gl::createFramebuffer();
+    glNamedFramebufferTexture(mRawFBO.id(), GL_COLOR_ATTACHMENT0, mRaw.id(), 0);
+    checkFramebuffer(mRawFBO.id(), "SSAO raw framebuffer incomplete");
+    mAOFBO = gl::createFramebuffer();
+    glNamedFramebufferTexture(mAOFBO.id(), GL_COLOR_ATTACHMENT0, mAO.id(), 0);
+    checkFramebuffer(mAOFBO.id(), "SSAO framebuffer incomplete");
+}
+
+void SSAO::uploadKernel(int count) {
+    std::vector<glm::vec3> kernel = ssaoKernel(count);
+    glProgramUniform3fv(mSSAOProg.id(), mSSAOProg.location("uKernel"), count, &kernel[0][0]);
+    std::array<glm::vec2, 16> noise = ssaoNoise();
+    glProgramUniform2fv(mSSAOProg.id(), mSSAOProg.location("uNoise"), 16, &noise[0][0]);
+    mKernelCount = count;
+}
+
+void SSAO::execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalTexture, int width, int height,
+                   const glm::mat4& view, const glm::mat4& proj, gl::GpuTimer& timer) {
+    GI_ASSERT(width > 0 && height > 0, "SSAO::execute needs a non-empty G-buffer");
+    resize(width, height);
+    const float one = 1.0f;
+    if (!s.enabled) {
+        auto pass = timer.scope("ssao");
+        glClearTexImage(mRaw.id(), 0, GL_RED, GL_FLOAT, &one);
+        glClearTexImage(mAO.id(), 0, GL_RED, GL_FLOAT, &one);
+        return;
+    }
+    // Settings come validated from presets; the clamp only guards the uniform array's bound.
+    int count = std::clamp(s.sampleCount, 1, kSSAOMaxSamples);
+    if (count != mKernelCount) uploadKernel(count);
+
+    glViewport(0, 0, width, height);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glBindVertexArray(mEmptyVAO.id());
+    glBindTextureUnit(kUnitDepth, depthTexture);
+    glBindSampler(kUnitDepth, mPointSampler.id());
+
+    {
+        auto pass = timer.scope("ssao");
+        glBindFramebuffer(GL_FRAMEBUFFER, mRawFBO.id());
+        glBindTextureUnit(kUnitNormal, normalTexture);
+        glBindSampler(kUnitNormal, mPointSampler.id());
+        mSSAOProg.use();
+        mSSAOProg.set("uView", view);
+        mSSAOProg.set("uProj", proj);
+        mSSAOProg.set("uInvProj", glm::inverse(proj));
+        mSSAOProg.set("uSampleCount", count);
+        mSSAOProg.set("uRadius", s.radius);
+        mSSAOProg.set("uBias", s.bias);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindSampler(kUnitNormal, 0);
+    }
+    {
+        auto pass = timer.scope("ssaoBlur");
+        glBindFramebuffer(GL_FRAMEBUFFER, mAOFBO.id());
+        glBindTextureUnit(kUnitSource, mRaw.id());
+        glBindSampler(kUnitSource, mPointSampler.id());
+        mBlurProg.use();
+        mBlurProg.set("uBlurRadius", std::max(s.blurRadius, 0));
+        mBlurProg.set("uStrength", std::max(s.strength, 0.0f));
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindSampler(kUnitSource, 0);
+    }
+    glBindSampler(kUnitDepth, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+std::vector<DebugView> SSAO::debugViews() const {
+    std::vector<DebugView> v;
+    if (!mWidth) return v;
+    // AO is a factor, not a colour: shown as stored, without the sRGB curve.
+    v.push_back({"ssaoRaw", mRaw.id(), GL_TEXTURE_2D, kViewDisplay, mWidth, mHeight});
+    v.push_back({"ssao", mAO.id(), GL_TEXTURE_2D, kViewDisplay, mWidth, mHeight});
+    return v;
+}
+
+bool SSAO::reloadShaders(std::string& log) {
+    bool ok = true;
+    log.clear();
+    for (gl::Program* p : {&mSSAOProg, &mBlurProg}) {
+        if (!p->reload()) {
+            ok = false;
+            log += p->log() + "\n";
+        }
+    }
+    mKernelCount = 0;  // a rebuilt program starts with empty uniforms
+    return ok;
+}
+
+}  // namespace gi

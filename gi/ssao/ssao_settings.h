@@ -1,0 +1,30 @@
+// Settings of screen-space ambient occlusion (seed 000, Sec 3.5.1, after Chapman 2011). Every
+// field is a uniform: SSAO::execute() regenerates the kernel when sampleCount changes and
+// allocates its targets on first use, so no change needs a rebuild.
+#pragma once
+
+#include "gi/preset/settings.h"
+
+namespace gi {
+
+struct SSAOSettings {
+    static constexpr std::string_view kSection = "ssao";
+    bool enabled = false;    // multiply the indirect term by ambient occlusion
+    float radius = 0.5f;     // world-space hemisphere radius, metres (0.01..10)
+    int sampleCount = 16;    // kernel samples per pixel (4..64)
+    float bias = 0.025f;     // depth a sample must lie behind the stored surface to count, metres (0..1)
+    float strength = 1.0f;   // AO = pow(visibility, strength); 0 turns AO off (0..4)
+    int blurRadius = 2;      // box blur half-width in pixels; 2 covers the 4x4 noise tile exactly (0..4)
+
+    template <class V>
+    void visit(V&& v) {
+        v(enabled, {"enabled", "Multiply the indirect term by screen-space ambient occlusion", ""});
+        v(radius, {"radius", "World-space radius of the sampling hemisphere", "m", 0.01, 10, Cost::Uniform, 0.01});
+        v(sampleCount, {"sampleCount", "Kernel samples per pixel", "", 4, 64});
+        v(bias, {"bias", "Depth a sample must lie behind the stored surface to count as occluded", "m", 0, 1, Cost::Uniform, 0.001});
+        v(strength, {"strength", "Exponent applied to the visibility (0 turns AO off)", "", 0, 4, Cost::Uniform, 0.01});
+        v(blurRadius, {"blurRadius", "Box blur half-width; the window is 2*blurRadius pixels wide (0 = no blur)", "px", 0, 4});
+    }
+};
+
+}  // namespace gi

@@ -1,0 +1,43 @@
+// Injection: every RSM texel is a virtual point light with intensity flux / pi * max(n.w, 0),
+// moved `nudge` cells along its normal, added to its cell's SH (float adds through
+// atomicCompSwap, exact under contention).
+#include "lpv/common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba16f) uniform readonly image2D uFlux;
+layout(binding = 1, rgba16f) uniform readonly image2D uNormal;
+layout(binding = 2, rgba32f) uniform readonly image2D uPosition;
+layout(std430, binding = 0) buffer Grid { uint grid[]; };
+
+uniform int uRSMResolution;
+uniform vec3 uGridMin;
+uniform float uCellSize;
+uniform float uNudge;
+
+void atomicAddFloat(int i, float v) {
+    uint seen = grid[i];
+    while (true) {
+        uint prev = atomicCompSwap(grid[i], seen, floatBitsToUint(uintBitsToFloat(seen) + v));
+        if (prev == seen) break;
+        seen = prev;
+    }
+}
+
+void main() {
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(t, ivec2(uRSMResolution)))) return;
+    vec4 pos = imageLoad(uPosition, t);
+    vec3 flux = imageLoad(uFlux, t).rgb;
+    if (pos.w <= 0.0 || max(flux.r, max(flux.g, flux.b)) <= 0.0) return;
+    vec3 n = normalize(imageLoad(uNormal, t).xyz);
+    vec3 p = pos.xyz + n * uNudge * uCellSize;
+    ivec3 c = ivec3(floor((p - uGridMin) / uCellSize));
+    if (!insideGrid(c)) return;
+    vec4 lobe = shCosLobe(n) / 3.14159265358979;
+    int base = cellIndex(c) * 12;
+    for (int k = 0; k < 4; ++k) {
+        atomicAddFloat(base + k, lobe[k] * flux.r);
+        atomicAddFloat(base + 4 + k, lobe[k] * flux.g);
+        atomicAddFloat(base + 8 + k, lobe[k] * flux.b);
+    }
+}

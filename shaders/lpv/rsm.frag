@@ -1,0 +1,63 @@
+// Reflective shadow map texel: world position (w: the surfel's world area), normal facing the
+// light, and the flux the surfel reflects diffusely: albedo * light * projected texel area
+// (directional) or albedo * intensity * texel solid angle (spot), so the total does not depend
+// on the map's resolution.
+#include "common/shared.h"
+
+layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
+uniform vec4 uBaseColor;
+uniform float uMetallic;
+uniform bool uHasTexture;
+uniform float uAlphaCutoff;
+uniform int uLightType;
+uniform vec3 uLightColor;  // color * intensity
+uniform vec3 uLightPos;
+uniform vec3 uLightDir;
+uniform float uLightRange;
+uniform float uCosInner;
+uniform float uCosOuter;
+uniform float uTexelArea;        // directional
+uniform float uTexelSolidAngle;  // spot, at the map's centre
+
+in vec3 vWorld;
+in vec3 vNormal;
+in vec2 vUV;
+
+layout(location = 0) out vec4 oFlux;
+layout(location = 1) out vec4 oNormal;
+layout(location = 2) out vec4 oPosition;
+
+void main() {
+    vec4 base = uBaseColor;
+    if (uHasTexture) base *= texture(uBaseColorTex, vUV);
+    if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
+    vec3 L;  // towards the light
+    vec3 flux;
+    float area;
+    if (uLightType == kLightDirectional) {
+        L = -uLightDir;
+        flux = uLightColor * uTexelArea;
+        area = uTexelArea;
+    } else {
+        vec3 toLight = uLightPos - vWorld;
+        float d = length(toLight);
+        L = toLight / d;
+        // A texel's solid angle shrinks with cos^3 of its angle off the axis.
+        float cosAxis = dot(-L, uLightDir);
+        float solidAngle = uTexelSolidAngle * cosAxis * cosAxis * cosAxis;
+        float atten = smoothstep(uCosOuter, uCosInner, cosAxis);
+        if (uLightRange > 0.0) {
+            float r = d / uLightRange;
+            float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);
+            atten *= w * w;
+        }
+        flux = uLightColor * atten * solidAngle;
+        area = solidAngle * d * d;
+    }
+    vec3 n = normalize(vNormal);
+    if (dot(n, L) < 0.0) n = -n;  // two-sided, as the raster and the path tracer
+    float cosTheta = max(dot(n, L), 0.05);
+    oFlux = vec4(base.rgb * (1.0 - uMetallic) * flux, 1.0);
+    oNormal = vec4(n, 1.0);
+    oPosition = vec4(vWorld, area / cosTheta);
+}
