@@ -1,5 +1,7 @@
 #include "gi/reference/path_tracer.h"
 
+#include "common/ggx.h"
+
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 
@@ -50,23 +52,11 @@ float maxComponent(const glm::vec3& c) { return std::max(c.r, std::max(c.g, c.b)
 
 float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
-// The raster pipeline's GGX terms (shaders/common/brdf.glsl), in C++.
-float D_GGX(float NoH, float a) {
-    float a2 = a * a;
-    float d = NoH * NoH * (a2 - 1.0f) + 1.0f;
-    return a2 / (kPi * d * d);
-}
-float V_SmithGGXCorrelated(float NoV, float NoL, float a) {
-    float a2 = a * a;
-    float gv = NoL * std::sqrt(NoV * NoV * (1.0f - a2) + a2);
-    float gl = NoV * std::sqrt(NoL * NoL * (1.0f - a2) + a2);
-    return 0.5f / std::max(gv + gl, 1e-7f);
-}
-glm::vec3 F_Schlick(float VoH, const glm::vec3& f0) { return f0 + (1.0f - f0) * std::pow(1.0f - VoH, 5.0f); }
-float G1_GGX(float NoV, float a) {
-    float a2 = a * a;
-    return 2.0f * NoV / (NoV + std::sqrt(a2 + (1.0f - a2) * NoV * NoV));
-}
+// The raster pipeline's GGX terms, from the header the shaders include too.
+using ggx::D_GGX;
+using ggx::F_Schlick;
+using ggx::G1_GGX;
+using ggx::V_SmithGGXCorrelated;
 
 // An orthonormal basis around n (Duff et al. 2017).
 void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
