@@ -1,6 +1,7 @@
 // gi-editor: tune a GI Workbench preset live in a window (GLFW + Dear ImGui). With --screenshot
 // it renders a few frames, writes the whole window with its panels to a PNG and exits, so tests
-// can run it under Xvfb.
+// can run it under Xvfb. With --reference the screenshot waits until the path-traced reference
+// has all its samples and its scores, so the picture does not depend on the machine's speed.
 #include "gi/gl/debug.h"
 #include "gi/render/image_io.h"
 #include "ui/editor.h"
@@ -10,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 namespace {
 
@@ -18,12 +20,20 @@ int run(int argc, char** argv) {
     gi::ui::EditorOptions options;
     std::string preset, screenshot;
     int frames = 0;
+    double referenceTimeout = 120.0;
     app.add_option("--preset", preset, "Preset (.json) or glTF file; default: presets/default.json");
     app.add_option("--frames", frames, "Render this many frames, then exit (default with --screenshot: 3)")->check(CLI::Range(1, 100000));
     app.add_option("--screenshot", screenshot, "After the last frame, write the whole window to this PNG and exit");
     app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(64, 16384));
     app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(64, 16384));
     app.add_option("--view", options.view, "Debug view the buffer previewer shows first (e.g. depth, shadow0)");
+    app.add_option("--reference", options.reference, "Start the Reference panel in this view")
+        ->check(CLI::IsMember({"live", "reference", "toggle", "split", "heat"}));
+    app.add_option("--reference-spp", options.referenceSPP, "Samples per pixel of the reference (overrides reference.spp)")
+        ->check(CLI::Range(1, 1 << 16));
+    app.add_option("--reference-timeout", referenceTimeout,
+                   "With --screenshot and --reference: seconds to wait for the reference before failing; 0: do not wait")
+        ->check(CLI::Range(0.0, 86400.0));
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -35,6 +45,9 @@ int run(int argc, char** argv) {
     gi::ui::Window window(options.width, options.height, "GI Workbench");
     gi::ui::Editor editor(options);
     std::string title;
+    const bool waitForReference = !screenshot.empty() && !options.reference.empty() && referenceTimeout > 0.0;
+    std::chrono::steady_clock::time_point waitStart;
+    bool timedOut = false;
     auto last = std::chrono::steady_clock::now();
     for (int frame = 1; !window.shouldClose(); ++frame) {
         auto now = std::chrono::steady_clock::now();
@@ -47,15 +60,31 @@ int run(int argc, char** argv) {
         editor.frame(width, height, dt);
         window.renderUI();
         bool done = frames > 0 && frame >= frames;
+        if (done && waitForReference && !editor.referenceSettled()) {
+            if (frame == frames) waitStart = std::chrono::steady_clock::now();
+            double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
+            timedOut = waited > referenceTimeout;
+            // Frames go on, slowly, so the tracer gets the cores llvmpipe would take.
+            if (!timedOut) {
+                window.swap();
+                std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                continue;
+            }
+        }
         if (done && !screenshot.empty()) {
             std::vector<uint8_t> pixels = window.readBackBuffer(width, height);
             gi::writePNG(screenshot, width, height, pixels);
             std::printf("%s\n", screenshot.c_str());
+            if (!options.reference.empty()) std::printf("%s\n", editor.referenceSummary().c_str());
         }
         window.swap();
         if (done) break;
         if (editor.title() != title) window.setTitle(title = editor.title());
     }
+    if (timedOut)
+        throw gi::Error("the reference did not finish within " + std::to_string(int(referenceTimeout)) +
+                        " s (screenshot written anyway)");
+    if (waitForReference && !editor.referenceError().empty()) throw gi::Error("reference: " + editor.referenceError());
     // Frame-limited runs are tests: a GL error fails them, as it fails gi-render.
     if (frames > 0 && gi::gl::debugErrorCount() > 0)
         throw gi::Error("OpenGL reported " + std::to_string(gi::gl::debugErrorCount()) + " errors (see above)");

@@ -21,9 +21,10 @@ namespace {
 
 const ImVec4 kErrorColor{1.0f, 0.4f, 0.35f, 1.0f};
 const ImVec4 kWarningColor{1.0f, 0.8f, 0.35f, 1.0f};
-// Layout at first use: a left column for the preset, a right one for stats and the previewer,
-// and the middle of the window left free for the viewport.
+// Layout at first use: a left column for the preset, a right one for stats, the previewer and
+// the reference, and the middle of the window left free for the viewport.
 constexpr float kMargin = 8.0f, kLeftWidth = 330.0f, kRightWidth = 340.0f, kStatsHeight = 240.0f;
+constexpr float kReferenceHeight = 205.0f;  // the Reference panel, at the bottom of the right column
 constexpr float kLabelWidth = 110.0f;  // room for the longest settings key beside its widget
 
 void wrappedText(const ImVec4& color, const std::string& text) {
@@ -56,8 +57,15 @@ Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(
         if (fs::exists(defaultFile)) {
             mPreset = loadPreset(defaultFile);
             mPresetPath = defaultFile;
+        } else {
+            mPreset = builtinDefaultPreset();  // no files at all: default.json as compiled in
         }
         mPathField = defaultFile.string();
+    }
+    if (options.referenceSPP > 0) mPreset.reference.spp = options.referenceSPP;
+    if (!options.reference.empty()) {
+        mReference.setView(referenceViewFromName(options.reference));
+        mReference.setEnabled(true);
     }
     // A glTF file opens with its own first camera (or one framing it) and its lights.
     installScene(mPreset, !isPreset);
@@ -99,6 +107,7 @@ void Editor::frame(int width, int height, float dt) {
 void Editor::apply(uint8_t cost) {
     if (!cost) return;
     mDirty = true;
+    ++mLiveGeneration;
     if (cost & uint8_t(Cost::ReloadScene)) {
         Preset p = mPreset;
         try {
@@ -127,19 +136,25 @@ void Editor::installScene(Preset& p, bool resetView) {
     mRenderer.setScene(scene);
     mScene = std::move(scene);
     mLoadedScene = p.header.scene;
+    ++mSceneGeneration;
+    ++mLiveGeneration;
 }
 
 void Editor::renderViewport(int width, int height) {
     mWidth = width;
     mHeight = height;
+    FrameSettings fs;
     try {
-        mRenderer.render(frameSettings(mPreset, mScene, width, height));
+        fs = frameSettings(mPreset, mScene, width, height);
+        mRenderer.render(fs);
         mGoodPreset = mPreset;
     } catch (const std::exception& e) {
         // Keep the last picture and go back to the settings that made it. The message stays
         // until dismissed, since the restored settings render fine on the next frame.
         mFrameError = std::string(e.what()) + " (previous settings restored)";
         mPreset = mGoodPreset;
+        fs = frameSettings(mPreset, mScene, width, height);
+        ++mLiveGeneration;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
@@ -150,6 +165,8 @@ void Editor::renderViewport(int width, int height) {
         glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
         glBlitNamedFramebuffer(mOutputFBO.id(), 0, 0, 0, mRenderer.width(), mRenderer.height(), 0, 0, width, height,
                                GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer);
+        mReference.drawViewport(width, height);
     }
 }
 
@@ -248,12 +265,22 @@ void Editor::drawPanels() {
     if (ImGui::Begin("Stats")) statsPanel();
     ImGui::End();
 
+    float previewerHeight = display.y - kStatsHeight - kReferenceHeight - 4 * kMargin;
     ImGui::SetNextWindowPos(ImVec2(rightX, kStatsHeight + 2 * kMargin), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kRightWidth, display.y - kStatsHeight - 3 * kMargin), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(kRightWidth, previewerHeight), ImGuiCond_FirstUseEver);
     // The wheel zooms the image, so it must not scroll the window.
     if (ImGui::Begin("Buffer previewer", nullptr, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse)) {
         ImGui::PushItemWidth(-kLabelWidth * 0.6f);
         mPreviewer.draw(mRenderer);
+        ImGui::PopItemWidth();
+    }
+    ImGui::End();
+
+    ImGui::SetNextWindowPos(ImVec2(rightX, display.y - kReferenceHeight - kMargin), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(kRightWidth, kReferenceHeight), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Reference")) {
+        ImGui::PushItemWidth(-kLabelWidth * 0.6f);
+        mReference.draw();
         ImGui::PopItemWidth();
     }
     ImGui::End();
@@ -309,6 +336,7 @@ void Editor::presetsPanel() {
         std::string log;
         // On failure the renderer keeps its old programs; the log says why.
         mShaderLog = mRenderer.reloadShaders(log) ? std::string() : log;
+        ++mLiveGeneration;
         if (mShaderLog.empty()) mPresetStatus = "shaders reloaded";
     }
     if (!mPresetError.empty()) wrappedText(kErrorColor, mPresetError);

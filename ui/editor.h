@@ -10,6 +10,7 @@
 #include "gi/scene/scene.h"
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
+#include "ui/reference_panel.h"
 
 #include <filesystem>
 #include <string>
@@ -22,6 +23,8 @@ struct EditorOptions {
     std::string view = "final";    // the buffer previewer's first view
     int width = 1280;              // first frame size, for the memory estimate before the scene is uploaded
     int height = 720;
+    std::string reference;         // non-empty: the Reference panel starts on, in this view (live, split, ...)
+    int referenceSPP = 0;          // > 0: overrides the preset's reference.spp
 };
 
 class Editor {
@@ -37,6 +40,12 @@ public:
     // The window title: the preset file, starred when it has unsaved changes.
     std::string title() const;
 
+    // The Reference panel's job has finished its samples and its metrics are of the final image
+    // (or it failed): what a screenshot with a reference waits for.
+    bool referenceSettled() const { return mReference.settled(); }
+    std::string referenceError() const { return mReference.error(); }
+    std::string referenceSummary() const { return mReference.summary(); }
+
 private:
     Preset mPreset;
     Preset mGoodPreset;                 // the last preset that rendered; restored when a frame fails
@@ -49,6 +58,9 @@ private:
     Renderer mRenderer;
     FlyCamera mFlyCamera;
     BufferPreviewer mPreviewer;
+    ReferencePanel mReference;
+    uint64_t mSceneGeneration = 0;  // grows with each installed scene
+    uint64_t mLiveGeneration = 0;   // grows with each change that can alter the live image
     gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
