@@ -29,15 +29,21 @@ vec3 irradiance(int k, vec3 p, vec3 n) {
     return max(e, 0.0) / (uCascadeMinCell[k].w * uCascadeMinCell[k].w);
 }
 
+// Irradiance from the green SH alone: damping needs a brightness ratio, not colour, and one
+// lookup instead of three keeps the pass cheap.
+float greenIrradiance(int k, vec3 p, vec3 n) {
+    vec3 tc = (p - uCascadeMinCell[k].xyz) / (uCascadeMinCell[k].w * float(uResolution));
+    return max(dot(texture(uSH[3 * k + 1], tc), shCosLobe(-n)), 0.0);
+}
+
 vec3 dampedIrradiance(int k, vec3 p, vec3 n) {
     float h = 0.5 * uCascadeMinCell[k].w;
     // Shade from half a cell in front of the surface: the surface's own blocking sits on the
     // cell corners around it and would otherwise hold back the light that reaches it.
     vec3 e = irradiance(k, p + n * h, n);
     if (uDamping <= 0.0) return e;
-    const vec3 lum = vec3(0.2126, 0.7152, 0.0722);
-    float front = dot(e, lum);
-    float back = dot(irradiance(k, p - n * h, n), lum);
+    float front = e.g * uCascadeMinCell[k].w * uCascadeMinCell[k].w;
+    float back = greenIrradiance(k, p - n * h, n);
     float ratio = back > front && back > 0.0 ? front / back : 1.0;
     return e * mix(1.0, ratio, uDamping);
 }
