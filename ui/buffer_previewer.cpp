@@ -43,6 +43,7 @@ void BufferPreviewer::draw(const Renderer& renderer) {
         ImGui::TextDisabled("view '%s' is not available", mView.c_str());
         return;
     }
+    if (view->target == GL_TEXTURE_3D) volumeControls(*view);
 
     // Fit the view's aspect into the space left above one readout line.
     ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -68,7 +69,8 @@ void BufferPreviewer::draw(const Renderer& renderer) {
     } else if (view->target == GL_TEXTURE_CUBE_MAP) {
         ImGui::TextDisabled("no texel readout for cube maps");
     } else {
-        readout(*view, sourceUV(screenUV, mZoom, mPan));
+        if (view->target == GL_TEXTURE_3D) ImGui::TextDisabled("volume slice: no texel readout");
+        else readout(*view, sourceUV(screenUV, mZoom, mPan));
     }
 }
 
@@ -83,10 +85,39 @@ void BufferPreviewer::renderImage(const Renderer& renderer, const DebugView& vie
     params.exposure = mExposure;
     params.zoom = mZoom;
     params.pan = mPan;
+    params.axis = mVolume.axis;
+    params.slice = mVolume.slice;
+    params.shComponent = mVolume.shComponent;
+    params.direction = mVolume.direction;
+    params.falseColour = mVolume.falseColour;
     glBindFramebuffer(GL_FRAMEBUFFER, mFBO.id());
     glViewport(0, 0, width, height);
     renderer.drawView(view, params);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void BufferPreviewer::volumeControls(const DebugView& view) {
+    // Two compact lines, so the slice image keeps its room in a small window.
+    float half = ImGui::GetContentRegionAvail().x * 0.5f - ImGui::GetStyle().ItemSpacing.x;
+    ImGui::SetNextItemWidth(half * 0.35f);
+    ImGui::Combo("##axis", &mVolume.axis, "X\0Y\0Z\0");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(half * 1.65f);
+    ImGui::SliderFloat("slice", &mVolume.slice, 0.0f, 1.0f, "%.3f");
+    // -1 shows the irradiance (SH volumes) or blocking (geometry) towards the direction.
+    int show = mVolume.shComponent + 1;
+    bool sh = view.mode == shared::kViewSHVolume;
+    ImGui::SetNextItemWidth(half * 0.8f);
+    ImGui::Combo("##shows", &show, sh ? "irradiance\0SH 0\0SH 1\0SH 2\0SH 3\0" : "blocking\0SH 0\0SH 1\0SH 2\0SH 3\0");
+    mVolume.shComponent = show - 1;
+    ImGui::SameLine();
+    if (mVolume.shComponent < 0) {
+        ImGui::SetNextItemWidth(half * 0.9f);
+        ImGui::DragFloat3("##direction", &mVolume.direction.x, 0.01f, -1.0f, 1.0f, "%.1f");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("normal of the surface whose irradiance (or blocking) is shown");
+        ImGui::SameLine();
+    }
+    ImGui::Checkbox("false colour", &mVolume.falseColour);
 }
 
 void BufferPreviewer::interact(glm::vec2 screenUV, glm::vec2 size, bool dragging) {

@@ -1,5 +1,7 @@
 #include "ui/editor.h"
 
+#include "gi/lpv/lpv.h"
+
 #include "gi/util/paths.h"
 #include "ui/settings_panel.h"
 
@@ -231,9 +233,35 @@ void Editor::scanFiles() {
     std::sort(mPresetFiles.begin(), mPresetFiles.end());
 }
 
+void Editor::drawCascadeOverlay() {
+    if (!mShowCascades || mPreset.header.technique != TechniqueKind::LPV || !mScene.bounds.valid() || mWidth <= 0) return;
+    FrameSettings fs = frameSettings(mPreset, mScene, mWidth, mHeight);
+    glm::mat4 viewProj = projectionMatrix(fs.camera, float(mWidth) / float(mHeight)) * viewMatrix(fs.camera);
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const ImU32 colours[4] = {IM_COL32(255, 220, 60, 200), IM_COL32(80, 220, 255, 200), IM_COL32(255, 110, 200, 200),
+                              IM_COL32(150, 255, 120, 200)};
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    std::vector<CascadeBox> boxes = lpvCascades(fs.lpv, mScene.bounds.min, mScene.bounds.max, fs.camera.eye);
+    for (size_t k = 0; k < boxes.size(); ++k) {
+        glm::vec4 clip[8];
+        for (int i = 0; i < 8; ++i)
+            clip[i] = viewProj * glm::vec4(boxes[k].min + boxes[k].extent * glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1), 1.0f);
+        for (int a = 0; a < 8; ++a)
+            for (int bit = 1; bit < 8; bit <<= 1) {
+                int b = a | bit;
+                if (b == a || clip[a].w <= 1e-4f || clip[b].w <= 1e-4f) continue;  // an edge behind the eye is skipped
+                auto screen = [&](const glm::vec4& c) {
+                    return ImVec2((c.x / c.w * 0.5f + 0.5f) * display.x, (0.5f - c.y / c.w * 0.5f) * display.y);
+                };
+                draw->AddLine(screen(clip[a]), screen(clip[b]), colours[k % 4], 1.5f);
+            }
+    }
+}
+
 void Editor::drawPanels() {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     uint8_t cost = 0;
+    drawCascadeOverlay();
 
     ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(kLeftWidth, display.y - 2 * kMargin), ImGuiCond_FirstUseEver);
@@ -254,6 +282,7 @@ void Editor::drawPanels() {
             if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
             cost |= drawSettings(section);
             if constexpr (std::is_same_v<S, CameraSettings>) cost |= cameraTools();
+            if constexpr (std::is_same_v<S, LPVSettings>) ImGui::Checkbox("show cascades in the viewport", &mShowCascades);
         });
         ImGui::PopItemWidth();
     }

@@ -53,6 +53,7 @@ private:
     std::string mPathField;             // the Presets panel's path (Open, Save As)
     std::filesystem::path mConfirmOverwrite;  // Save As target the user was warned exists
     bool mDirty = false;
+    bool mShowCascades = true;  // LPV cascade boxes drawn over the viewport
     std::string mLoadedScene;           // header.scene that mScene came from
     Scene mScene;
     Renderer mRenderer;
@@ -85,6 +86,7 @@ private:
     uint8_t cameraTools();  // beside the generated camera fields
     uint8_t lightsPanel();
     void statsPanel();
+    void drawCascadeOverlay();
 };
 
 }  // namespace gi::ui
