@@ -5,6 +5,7 @@
 #include "gi/render/image_io.h"
 #include "gi/render/renderer.h"
 #include "gi/gl/debug.h"
+#include "gi/lpv/lpv.h"
 #include "gi/metrics/metrics.h"
 #include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
@@ -114,6 +115,9 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "gi-render: warning: %s has no lights and the preset names none; a default sun is used\n",
                      scene.name.c_str());
     gi::FrameSettings frame = gi::frameSettings(preset, scene, width, height);
+    if (frame.technique == gi::TechniqueKind::LPV)
+        if (std::string note = gi::lpvIgnoredLights(frame.lights); !note.empty())
+            std::fprintf(stderr, "gi-render: warning: %s\n", note.c_str());
     gi::Renderer::checkBudget(frame, scene);  // refuse before any GL allocation
 
     fs::create_directories(outDir);

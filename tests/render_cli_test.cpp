@@ -90,6 +90,29 @@ TEST(RenderCLI, ViewsAndSetOverrides) {
     EXPECT_EQ(stats["settings"]["render"]["shadowMapSize"], 512);
 }
 
+TEST(RenderCLI, LPVViewsAndPointLightNote) {
+    auto out = test::tempDir();
+    auto r = test::runCommand(render(std::string(GI_PRESET_DIR) + "/lpv_basic.json --out " + out.string() +
+                                     " --width 96 --height 64 --views --set ssao.enabled=true"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* v : {"lpv.rsmFlux0c0", "lpv.rsmNormal0c0", "lpv.rsmPosition0c0", "lpv.volume0", "lpv.geometryRSM0",
+                          "lpv.geometryGBuffer0", "ssao", "ssaoRaw"})
+        EXPECT_TRUE(std::filesystem::exists(out / "views" / (std::string(v) + ".png"))) << v;
+    {
+        ImageRGBA8 volume = readImage8(out / "views" / "lpv.volume0.png");
+        size_t lit = 0;
+        for (size_t i = 0; i < volume.rgba.size(); i += 4) lit += volume.rgba[i] + volume.rgba[i + 1] + volume.rgba[i + 2] > 30;
+        EXPECT_GT(lit, volume.rgba.size() / 4 / 10) << "the LPV volume slice is (nearly) black";
+    }
+    // A point light is not injected, and the runner says so.
+    auto dir = test::tempDir();
+    std::ofstream(dir / "point.json") << R"({"schemaVersion": 1, "scene": "cornell", "technique": "lpv",
+        "lights": [{"type": "point", "position": [0, 1.8, 0], "intensity": 4}]})";
+    auto p = test::runCommand(render((dir / "point.json").string() + " --out " + (dir / "o").string() + " --width 32 --height 32"));
+    ASSERT_EQ(p.exitCode, 0) << p.output;
+    EXPECT_NE(p.output.find("point light adds no indirect light"), std::string::npos) << p.output;
+}
+
 TEST(RenderCLI, GLTFInputWithItsCamera) {
     if (!sharedScenesPresent()) GTEST_SKIP() << "../shared/scenes is not beside this checkout";
     auto out = test::tempDir();

@@ -282,7 +282,11 @@ void Editor::drawPanels() {
             if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
             cost |= drawSettings(section);
             if constexpr (std::is_same_v<S, CameraSettings>) cost |= cameraTools();
-            if constexpr (std::is_same_v<S, LPVSettings>) ImGui::Checkbox("show cascades in the viewport", &mShowCascades);
+            if constexpr (std::is_same_v<S, LPVSettings>) {
+                ImGui::Checkbox("show cascades in the viewport", &mShowCascades);
+                std::string note = lpvIgnoredLights(mPreset.lightsFromScene ? mScene.lights : mPreset.lights);
+                if (!note.empty()) wrappedText(kWarningColor, note);
+            }
         });
         ImGui::PopItemWidth();
     }

@@ -31,6 +31,14 @@ bool hasRSM(const LightSettings& l) { return l.type != LightType::Point; }
 
 }  // namespace
 
+std::string lpvIgnoredLights(const std::vector<LightSettings>& lights) {
+    int points = 0;
+    for (const auto& l : lights) points += !hasRSM(l);
+    if (points == 0) return "";
+    return std::to_string(points) + " point light" + (points > 1 ? "s add" : " adds") +
+           " no indirect light: the LPV injects directional and spot lights only (no cube RSM yet)";
+}
+
 std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
                                     const glm::vec3& camera) {
     std::vector<CascadeBox> boxes;

@@ -5,8 +5,8 @@
 //   1. RSMs [lpv.rsm]: per directional or spot light, a reflective shadow map storing world
 //      position, normal and flux. Directional maps are fitted to the cascade box as the seed
 //      does (the extent of the box's corners projected on the plane normal to the light); a
-//      spot light uses its own frustum. Point lights are left out: a cube RSM is future work,
-//      and the editor says so.
+//      spot light uses its own frustum. Point lights are left out: a cube RSM is future work;
+//      lpvIgnoredLights() names them so gi-render and the editor say so.
 //   2. Injection [lpv.inject]: each RSM texel becomes a virtual point light, moved `nudge`
 //      cells along its normal, added to its cell as intensity I(w) = flux / pi * max(n.w, 0)
 //      projected on 2-band SH, one SH per colour channel.
@@ -57,6 +57,9 @@ struct CascadeBox {
     float extent = 1.0f;  // cellSize * resolution
     glm::vec3 center() const { return min + glm::vec3(0.5f * extent); }
 };
+
+// Lights the LPV does not inject (point lights: no cube RSM yet), as a one-line note, or "".
+std::string lpvIgnoredLights(const std::vector<LightSettings>& lights);
 
 // The cascade boxes for a frame (exposed for tests and the editor's overlay).
 std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
