@@ -1,5 +1,6 @@
 #include "gi/reference/reference_cache.h"
 
+#include "gi/preset/reflect.h"
 #include "gi/util/error.h"
 
 #include <OpenImageIO/imageio.h>
@@ -38,15 +39,6 @@ private:
     uint64_t mHash = 0xcbf29ce484222325ULL;
 };
 
-void hashCamera(Hasher& h, const CameraSettings& c) {
-    h.value(c.eye);
-    h.value(c.target);
-    h.value(c.up);
-    h.value(c.fovY);
-    h.value(c.near);
-    h.value(c.far);
-}
-
 }  // namespace
 
 uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs) {
@@ -72,27 +64,14 @@ uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const Referen
         h.value(t.height);
         h.bytes(t.rgba.data(), t.rgba.size());
     }
-    hashCamera(h, fs.camera);
+    // Settings go in through the settings table, so a field added there is never missed here.
+    h.text(toJson(fs.camera).dump());
     h.value(fs.lights.size());
-    for (const LightSettings& l : fs.lights) {
-        h.value(l.type);
-        h.value(l.color);
-        h.value(l.intensity);
-        h.value(l.position);
-        h.value(l.direction);
-        h.value(l.range);
-        h.value(l.innerConeDeg);
-        h.value(l.outerConeDeg);
-        h.value(l.castShadows);
-    }
+    for (const LightSettings& l : fs.lights) h.text(toJson(l).dump());
+    h.text(toJson(rs).dump());
     h.value(fs.width);
     h.value(fs.height);
     h.value(fs.render.specular);
-    h.value(rs.spp);
-    h.value(rs.maxBounces);
-    h.value(rs.mode);
-    h.value(rs.seed);
-    h.value(rs.rouletteDepth);
     return h.result();
 }
 
