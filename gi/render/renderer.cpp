@@ -124,11 +124,12 @@ void Renderer::checkBudget(const FrameSettings& fs, size_t sceneBytes) {
                     " is outside 1..16384 per side");
     double mb = double(estimateFrameBytes(fs) + sceneBytes) / (1024.0 * 1024.0);
     if (mb > fs.render.memoryBudgetMB) {
-        char buf[256];
+        double technique = fs.technique == TechniqueKind::LPV ? double(LPV::estimateBytes(fs)) / (1024.0 * 1024.0) : 0.0;
+        char buf[320];
         std::snprintf(buf, sizeof buf,
                       "key 'render.memoryBudgetMB': these settings need %.0f MiB of GPU memory (image %dx%d, "
-                      "shadow maps %d^2 for %zu lights, scene %.0f MiB), over the budget of %.0f MiB",
-                      mb, fs.width, fs.height, fs.render.shadowMapSize, fs.lights.size(),
+                      "shadow maps %d^2 for %zu lights, technique %s %.0f MiB, scene %.0f MiB), over the budget of %.0f MiB",
+                      mb, fs.width, fs.height, fs.render.shadowMapSize, fs.lights.size(), enumName(fs.technique), technique,
                       double(sceneBytes) / (1024.0 * 1024.0), double(fs.render.memoryBudgetMB));
         throw Error(buf);
     }
