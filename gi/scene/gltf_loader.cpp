@@ -221,6 +221,13 @@ private:
                 const auto& s = ext->second.Get("emissiveStrength");
                 if (s.IsNumber()) out.emissive *= float(s.GetNumberAsDouble());
             }
+            if (m.emissiveTexture.index >= 0 && glm::length(out.emissive) > 0.0f) {
+                // The factor only scales the texture, which holds the pattern: emitting the bare
+                // factor would light the whole surface. Emissive textures are not loaded yet.
+                out.emissive = glm::vec3(0.0f);
+                mScene.warnings.push_back("material '" + out.name +
+                                          "': emissive textures are not supported; its emission is left out");
+            }
             if (m.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
             else if (m.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
             out.alphaCutoff = float(m.alphaCutoff);
