@@ -63,11 +63,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "gi-compare: %s\n", e.what());
-        return 1;
-    }
-}
+int main(int argc, char** argv) { return gi::reportErrors("gi-compare", [&] { return run(argc, argv); }); }

@@ -56,15 +56,13 @@ gi::CachedReference referenceFor(const gi::Scene& scene, const gi::FrameSettings
 }
 
 gi::json referenceStats(const gi::CachedReference& ref, const gi::ReferenceSettings& rs) {
-    return {{"spp", rs.spp},
-            {"mode", gi::enumName(rs.mode)},
-            {"maxBounces", rs.maxBounces},
-            {"seed", rs.seed},
-            {"fromCache", ref.fromCache},
+    gi::json j = gi::toJson(rs);  // the settings as the table writes them, then what happened
+    j.update({{"fromCache", ref.fromCache},
             {"seconds", ref.seconds},
             {"rays", ref.rays},
             {"raysPerSecond", ref.seconds > 0 ? double(ref.rays) / ref.seconds : 0.0},
-            {"cacheFile", ref.file.string()}};
+              {"cacheFile", ref.file.string()}});
+    return j;
 }
 
 int run(int argc, char** argv) {
@@ -187,11 +185,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "gi-render: %s\n", e.what());
-        return 1;
-    }
-}
+int main(int argc, char** argv) { return gi::reportErrors("gi-render", [&] { return run(argc, argv); }); }

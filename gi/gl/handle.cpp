@@ -4,6 +4,11 @@
 
 namespace gi::gl {
 
+void checkFramebuffer(GLuint fbo, const char* what) {
+    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    GI_ASSERT(status == GL_FRAMEBUFFER_COMPLETE, what);
+}
+
 size_t bytesPerTexel(GLenum f) {
     switch (f) {
         case GL_R8: return 1;

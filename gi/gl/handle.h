@@ -67,6 +67,9 @@ inline Framebuffer createFramebuffer() {
     return Framebuffer(id);
 }
 
+// Framebuffers are built from formats this project controls: incompleteness is a programming error.
+void checkFramebuffer(GLuint fbo, const char* what);
+
 // Bytes per texel of the internal formats this project allocates (for memory reports).
 size_t bytesPerTexel(GLenum internalFormat);
 

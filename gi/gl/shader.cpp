@@ -129,6 +129,10 @@ ProgramHandle Program::build() const {
     return program;
 }
 
+Program fullscreenProgram(const char* name, const char* frag, std::vector<std::string> defines) {
+    return Program(name, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, frag}}, std::move(defines));
+}
+
 bool Program::reload() {
     try {
         ProgramHandle fresh = build();

@@ -22,6 +22,10 @@ struct StageSource {
 std::string preprocessShader(const std::string& file, const std::vector<std::string>& defines,
                              std::vector<std::string>& files);
 
+class Program;
+// A program drawing one screen-covering triangle (common/fullscreen.vert) with fragment shader `frag`.
+Program fullscreenProgram(const char* name, const char* frag, std::vector<std::string> defines = {});
+
 class Program {
 public:
     Program() = default;

@@ -146,7 +146,7 @@ void LPV::allocate(const FrameSettings& fs) {
             glNamedFramebufferTexture(m.fbo.id(), GL_DEPTH_ATTACHMENT, m.depth.id(), 0);
             const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
             glNamedFramebufferDrawBuffers(m.fbo.id(), 3, bufs);
-            GI_ASSERT(glCheckNamedFramebufferStatus(m.fbo.id(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "RSM framebuffer");
+            gl::checkFramebuffer(m.fbo.id(), "RSM framebuffer incomplete");
             mRSMBytes += m.flux.bytes() + m.normal.bytes() + m.position.bytes() + m.depth.bytes();
             mRSMs.push_back(std::move(m));
         }

@@ -24,11 +24,6 @@ std::string oneLine(std::string s) {
     return s;
 }
 
-float decodeSRGB(float c) {
-    double v = c;
-    return float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
-}
-
 // shaders/common/color.glsl linearToSRGB: clamp, then the sRGB curve (step() takes the power
 // branch at c >= 0.0031308).
 float encodeSRGB(float c) {
@@ -102,7 +97,7 @@ ImageRGB loadImageLinear(const std::filesystem::path& path) {
     for (size_t p = 0; p < pixelCount(image); ++p) {
         for (int c = 0; c < 3; ++c) {
             float v = raw[p * channelCount + (grey ? 0 : c)];
-            image.rgb[p * 3 + c] = linear ? v : decodeSRGB(v);
+            image.rgb[p * 3 + c] = linear ? v : srgbToLinear(v);
         }
     }
     return image;

@@ -50,7 +50,6 @@ uint64_t mix64(uint64_t x) {
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 float maxComponent(const glm::vec3& c) { return std::max(c.r, std::max(c.g, c.b)); }
 
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // The raster pipeline's GGX terms, from the header the shaders include too.
 using ggx::D_GGX;

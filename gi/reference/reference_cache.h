@@ -12,7 +12,7 @@
 
 namespace gi {
 
-inline constexpr int kReferenceVersion = 1;
+inline constexpr int kReferenceVersion = 2;
 
 uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
 

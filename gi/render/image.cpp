@@ -6,6 +6,11 @@
 
 namespace gi {
 
+float srgbToLinear(float encoded) {
+    double v = encoded;
+    return float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+}
+
 ImageRGB toneMapped(const ImageRGB& hdr, const ToneMapSettings& toneMap) {
     ImageRGB out = hdr;
     const float scale = std::exp2(toneMap.exposure);

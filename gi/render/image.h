@@ -12,6 +12,9 @@ struct ImageRGB {
     std::vector<float> rgb;  // linear RGB, 3 floats per pixel, top row first
 };
 
+// The sRGB transfer curve, decoding an encoded value in [0, 1] to linear light.
+float srgbToLinear(float encoded);
+
 // Exposure (2^EV) and the tone curve of ToneMapSettings, as the tone-map pass applies them on the
 // GPU (the curves are shared with GLSL through shaders/common/shared.h). The result is
 // display-referred linear light in [0, 1]; encodeSRGB8 (gi/metrics) turns it into the 8-bit image.

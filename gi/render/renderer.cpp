@@ -66,15 +66,6 @@ gl::Sampler makeSampler(GLenum minFilter, GLenum magFilter, GLenum wrap, bool co
     return gl::Sampler(s);
 }
 
-gl::Program fullscreenProgram(const char* name, const char* frag) {
-    return gl::Program(name, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, frag}});
-}
-
-void checkFramebuffer(GLuint fbo, const char* what) {
-    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
-    GI_ASSERT(status == GL_FRAMEBUFFER_COMPLETE, what);
-}
-
 constexpr size_t kGBufferBytesPerPixel = 4 + 8 + 4 + 8 + 4;  // albedo, normal, material, emissive, depth
 constexpr size_t kTargetBytesPerPixel = 8 + 8 + 4;            // indirect, HDR, LDR
 
@@ -86,10 +77,10 @@ Renderer::Renderer()
                   {"LINEAR_DEPTH=0"}),
       mShadowPointProg("shadowPoint", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
                        {"LINEAR_DEPTH=1"}),
-      mCompositeProg(fullscreenProgram("composite", "render/composite.frag")),
-      mLightProg(fullscreenProgram("light", "render/light.frag")),
-      mToneProg(fullscreenProgram("tonemap", "render/tonemap.frag")),
-      mViewProg(fullscreenProgram("view", "render/view.frag")) {
+      mCompositeProg(gl::fullscreenProgram("composite", "render/composite.frag")),
+      mLightProg(gl::fullscreenProgram("light", "render/light.frag")),
+      mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
+      mViewProg(gl::fullscreenProgram("view", "render/view.frag")) {
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mEmptyVAO = gl::VertexArray(vao);
@@ -156,14 +147,14 @@ void Renderer::resize(int width, int height) {
     glNamedFramebufferTexture(mGBufferFBO.id(), GL_DEPTH_ATTACHMENT, mDepth.id(), 0);
     const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
     glNamedFramebufferDrawBuffers(mGBufferFBO.id(), 4, bufs);
-    checkFramebuffer(mGBufferFBO.id(), "G-buffer framebuffer incomplete");
+    gl::checkFramebuffer(mGBufferFBO.id(), "G-buffer framebuffer incomplete");
 
     mHDRFBO = gl::createFramebuffer();
     glNamedFramebufferTexture(mHDRFBO.id(), GL_COLOR_ATTACHMENT0, mHDR.id(), 0);
-    checkFramebuffer(mHDRFBO.id(), "HDR framebuffer incomplete");
+    gl::checkFramebuffer(mHDRFBO.id(), "HDR framebuffer incomplete");
     mLDRFBO = gl::createFramebuffer();
     glNamedFramebufferTexture(mLDRFBO.id(), GL_COLOR_ATTACHMENT0, mLDR.id(), 0);
-    checkFramebuffer(mLDRFBO.id(), "LDR framebuffer incomplete");
+    gl::checkFramebuffer(mLDRFBO.id(), "LDR framebuffer incomplete");
 }
 
 void Renderer::prepareShadows(const FrameSettings& fs) {
@@ -188,7 +179,7 @@ void Renderer::prepareShadows(const FrameSettings& fs) {
                     gl::Framebuffer fbo = gl::createFramebuffer();
                     glNamedFramebufferTextureLayer(fbo.id(), GL_DEPTH_ATTACHMENT, sm.depth.id(), 0, face);
                     glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
-                    checkFramebuffer(fbo.id(), "cube shadow framebuffer incomplete");
+                    gl::checkFramebuffer(fbo.id(), "cube shadow framebuffer incomplete");
                     sm.fbos.push_back(std::move(fbo));
                 }
             } else {
@@ -196,7 +187,7 @@ void Renderer::prepareShadows(const FrameSettings& fs) {
                 gl::Framebuffer fbo = gl::createFramebuffer();
                 glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, sm.depth.id(), 0);
                 glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
-                checkFramebuffer(fbo.id(), "shadow framebuffer incomplete");
+                gl::checkFramebuffer(fbo.id(), "shadow framebuffer incomplete");
                 sm.fbos.push_back(std::move(fbo));
             }
         }
@@ -484,7 +475,7 @@ std::vector<PassStats> Renderer::passStats() const {
         else if (r.name == "indirect") bytes = mIndirect.bytes();
         else if (r.name == "lighting") bytes = mHDR.bytes();
         else if (r.name == "tonemap") bytes = mLDR.bytes();
-        else if (r.name == "ssao" || r.name == "ssaoBlur") bytes = r.name == "ssao" ? mSSAO.memoryBytes() : 0;
+        else if (r.name == "ssao") bytes = mSSAO.memoryBytes();  // both AO targets; the blur pass holds none
         else if (mTechnique) bytes = mTechnique->passMemory(r.name);
         out.push_back({r.name, r.gpuMs, bytes});
     }

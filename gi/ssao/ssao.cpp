@@ -28,15 +28,6 @@ private:
     std::mt19937 mEngine;
 };
 
-gl::Program fullscreenProgram(const char* name, const char* frag) {
-    return gl::Program(name, {{GL_VERTEX_SHADER, "common/fullscreen.vert"}, {GL_FRAGMENT_SHADER, frag}});
-}
-
-void checkFramebuffer(GLuint fbo, const char* what) {
-    GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
-    GI_ASSERT(status == GL_FRAMEBUFFER_COMPLETE, what);
-}
-
 // Both targets are R8: visibility needs no more than 8 bits once blurred.
 constexpr GLenum kFormat = GL_R8;
 
@@ -76,8 +67,8 @@ std::array<glm::vec2, 16> ssaoNoise(uint32_t seed) {
 }
 
 SSAO::SSAO()
-    : mSSAOProg(fullscreenProgram("ssao", "ssao/ssao.frag")),
-      mBlurProg(fullscreenProgram("ssaoBlur", "ssao/ssao_blur.frag")) {
+    : mSSAOProg(gl::fullscreenProgram("ssao", "ssao/ssao.frag")),
+      mBlurProg(gl::fullscreenProgram("ssaoBlur", "ssao/ssao_blur.frag")) {
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mEmptyVAO = gl::VertexArray(vao);
@@ -105,10 +96,10 @@ void SSAO::resize(int width, int height) {
     for (GLuint t : {mRaw.id(), mAO.id()}) glTextureParameteriv(t, GL_TEXTURE_SWIZZLE_RGBA, swizzle);
     mRawFBO = gl::createFramebuffer();
     glNamedFramebufferTexture(mRawFBO.id(), GL_COLOR_ATTACHMENT0, mRaw.id(), 0);
-    checkFramebuffer(mRawFBO.id(), "SSAO raw framebuffer incomplete");
+    gl::checkFramebuffer(mRawFBO.id(), "SSAO raw framebuffer incomplete");
     mAOFBO = gl::createFramebuffer();
     glNamedFramebufferTexture(mAOFBO.id(), GL_COLOR_ATTACHMENT0, mAO.id(), 0);
-    checkFramebuffer(mAOFBO.id(), "SSAO framebuffer incomplete");
+    gl::checkFramebuffer(mAOFBO.id(), "SSAO framebuffer incomplete");
 }
 
 void SSAO::uploadKernel(int count) {

@@ -14,6 +14,17 @@ public:
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A tool's main(): runs `run`, turning any exception into one line "tool: message" and exit 1.
+template <class F>
+int reportErrors(const char* tool, F&& run) {
+    try {
+        return run();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", tool, e.what());
+        return 1;
+    }
+}
+
 }  // namespace gi
 
 #define GI_ASSERT(cond, reason)                                                              \
