@@ -14,7 +14,7 @@ template <class S>
 class SettingsTest : public ::testing::Test {};
 
 using AllSettings = ::testing::Types<PresetHeader, CameraSettings, LightSettings, RenderSettings, ToneMapSettings,
-                                     ReferenceSettings, QualitySettings, LPVSettings, SSAOSettings>;
+                                     ReferenceSettings, QualitySettings, LPVSettings, VCTSettings, SSAOSettings>;
 TYPED_TEST_SUITE(SettingsTest, AllSettings);
 
 // A JSON value of the wrong type for a field of type T.

@@ -47,6 +47,7 @@ public:
     void set(const char* n, const glm::vec3& v) const { glProgramUniform3fv(id(), location(n), 1, &v[0]); }
     void set(const char* n, const glm::vec4& v) const { glProgramUniform4fv(id(), location(n), 1, &v[0]); }
     void set(const char* n, const glm::ivec2& v) const { glProgramUniform2iv(id(), location(n), 1, &v[0]); }
+    void set(const char* n, const glm::ivec3& v) const { glProgramUniform3iv(id(), location(n), 1, &v[0]); }
     void set(const char* n, const glm::mat4& v) const { glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, &v[0][0]); }
 
 private:

@@ -204,6 +204,7 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
     fs.toneMap = p.toneMap;
     fs.technique = p.header.technique;
     fs.lpv = p.lpv;
+    fs.vct = p.vct;
     fs.ssao = p.ssao;
     fs.width = width;
     fs.height = height;

@@ -48,6 +48,7 @@ struct Preset {
     RenderSettings render;
     ToneMapSettings toneMap;
     LPVSettings lpv;
+    VCTSettings vct;
     SSAOSettings ssao;
     ReferenceSettings reference;
     QualitySettings quality;
@@ -60,6 +61,7 @@ struct Preset {
         f(render);
         f(toneMap);
         f(lpv);
+        f(vct);
         f(ssao);
         f(reference);
         f(quality);

@@ -6,6 +6,7 @@
 #include "gi/preset/settings.h"
 #include "gi/scene/scene_settings.h"
 #include "gi/ssao/ssao_settings.h"
+#include "gi/vct/vct_settings.h"
 
 #include <vector>
 
@@ -57,11 +58,11 @@ struct ToneMapSettings {
 namespace gi {
 
 // The technique that fills the indirect term. Each names its settings section in the preset.
-enum class TechniqueKind { None, LPV };
+enum class TechniqueKind { None, LPV, VCT };
 template <>
 struct EnumNames<TechniqueKind> {
-    static constexpr std::array<std::pair<TechniqueKind, const char*>, 2> values{
-        {{TechniqueKind::None, "none"}, {TechniqueKind::LPV, "lpv"}}};
+    static constexpr std::array<std::pair<TechniqueKind, const char*>, 3> values{
+        {{TechniqueKind::None, "none"}, {TechniqueKind::LPV, "lpv"}, {TechniqueKind::VCT, "vct"}}};
 };
 
 // Everything one frame needs besides the scene: the preset resolved against the scene.
@@ -72,6 +73,7 @@ struct FrameSettings {
     ToneMapSettings toneMap;
     TechniqueKind technique = TechniqueKind::None;
     LPVSettings lpv;
+    VCTSettings vct;
     SSAOSettings ssao;
     int width = 640;
     int height = 360;

@@ -1,6 +1,7 @@
 #include "gi/render/renderer.h"
 
 #include "gi/lpv/lpv.h"
+#include "gi/vct/vct.h"
 
 #include "common/shared.h"
 #include "gi/util/error.h"
@@ -16,6 +17,8 @@ using namespace shared;
 // ---------------------------------------------------------------------------------------------
 
 GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.materials), mBounds(scene.bounds) {
+    static uint64_t sCount = 0;
+    mId = ++sCount;
     mVertices = gl::createBuffer(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
     mIndices = gl::createBuffer(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
     mBytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
@@ -67,7 +70,7 @@ gl::Sampler makeSampler(GLenum minFilter, GLenum magFilter, GLenum wrap, bool co
 }
 
 constexpr size_t kGBufferBytesPerPixel = 4 + 8 + 4 + 8 + 4;  // albedo, normal, material, emissive, depth
-constexpr size_t kTargetBytesPerPixel = 8 + 8 + 4;            // indirect, HDR, LDR
+constexpr size_t kTargetBytesPerPixel = 8 + 8 + 8 + 4;        // indirect, indirect specular, HDR, LDR
 
 }  // namespace
 
@@ -98,13 +101,21 @@ Renderer::~Renderer() = default;
 
 void Renderer::setScene(const Scene& scene) { mScene = std::make_unique<GPUScene>(scene); }
 
+namespace {
+size_t techniqueBytes(const FrameSettings& fs) {
+    if (fs.technique == TechniqueKind::LPV) return LPV::estimateBytes(fs);
+    if (fs.technique == TechniqueKind::VCT) return VCT::estimateBytes(fs);
+    return 0;
+}
+}  // namespace
+
 size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
     size_t pixels = size_t(std::max(fs.width, 0)) * size_t(std::max(fs.height, 0));
     size_t bytes = pixels * (kGBufferBytesPerPixel + kTargetBytesPerPixel);
     size_t face = size_t(fs.render.shadowMapSize) * size_t(fs.render.shadowMapSize) * 4;
     for (const auto& l : fs.lights)
         if (l.castShadows) bytes += face * (l.type == LightType::Point ? 6 : 1);
-    if (fs.technique == TechniqueKind::LPV) bytes += LPV::estimateBytes(fs);
+    bytes += techniqueBytes(fs);
     bytes += SSAO::estimateBytes(fs.width, fs.height);
     return bytes;
 }
@@ -115,7 +126,7 @@ void Renderer::checkBudget(const FrameSettings& fs, size_t sceneBytes) {
                     " is outside 1..16384 per side");
     double mb = double(estimateFrameBytes(fs) + sceneBytes) / (1024.0 * 1024.0);
     if (mb > fs.render.memoryBudgetMB) {
-        double technique = fs.technique == TechniqueKind::LPV ? double(LPV::estimateBytes(fs)) / (1024.0 * 1024.0) : 0.0;
+        double technique = double(techniqueBytes(fs)) / (1024.0 * 1024.0);
         char buf[320];
         std::snprintf(buf, sizeof buf,
                       "key 'render.memoryBudgetMB': these settings need %.0f MiB of GPU memory (image %dx%d, "
@@ -136,6 +147,7 @@ void Renderer::resize(int width, int height) {
     mEmissive = gl::Texture::create2D(GL_RGBA16F, width, height);
     mDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
     mIndirect = gl::Texture::create2D(GL_RGBA16F, width, height);
+    mIndirectSpecular = gl::Texture::create2D(GL_RGBA16F, width, height);
     mHDR = gl::Texture::create2D(GL_RGBA16F, width, height);
     mLDR = gl::Texture::create2D(GL_RGBA8, width, height);
 
@@ -205,6 +217,7 @@ void Renderer::render(const FrameSettings& fs) {
     if (fs.technique != mTechniqueKind || (fs.technique != TechniqueKind::None && !mTechnique)) {
         mTechnique.reset();
         if (fs.technique == TechniqueKind::LPV) mTechnique = std::make_unique<LPV>();
+        if (fs.technique == TechniqueKind::VCT) mTechnique = std::make_unique<VCT>();
         mTechniqueKind = fs.technique;
     }
     glm::mat4 view = viewMatrix(fs.camera);
@@ -324,10 +337,18 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
 }
 
 void Renderer::renderIndirect(const FrameSettings& fs, const glm::mat4& view, const glm::mat4& proj) {
+    const glm::vec4 zero(0.0f);
+    glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
     if (mTechnique) {
+        mShadowViews.assign(fs.lights.size(), ShadowMapView{});
+        for (size_t i = 0; i < fs.lights.size(); ++i)
+            if (fs.lights[i].castShadows)
+                mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mShadows[i].viewProj,
+                                   mShadows[i].far};
         FrameContext ctx{fs,         *mScene,      view,           proj,          proj * view,
                          glm::inverse(proj * view), mAlbedo.id(), mNormal.id(), mMaterial.id(), mDepth.id(),
-                         mIndirect.id(),            mWidth,       mHeight,      mTimer};
+                         mIndirect.id(),            mIndirectSpecular.id(),     mShadowViews,  mWidth,
+                         mHeight,                   mTimer};
         mTechnique->execute(ctx);
         return;
     }
@@ -355,6 +376,8 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     glBindSampler(kUnitIndirect, mPointSampler.id());
     glBindTextureUnit(kUnitAO, mSSAO.aoTexture());
     glBindSampler(kUnitAO, mPointSampler.id());
+    glBindTextureUnit(kUnitIndirectSpecular, mIndirectSpecular.id());
+    glBindSampler(kUnitIndirectSpecular, mPointSampler.id());
     glm::mat4 inv = glm::inverse(viewProj);
 
     glDisable(GL_BLEND);
@@ -398,7 +421,7 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
         if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, 0);
     }
     glDisable(GL_BLEND);
-    for (int u = kUnitAlbedo; u <= kUnitAO; ++u) glBindSampler(u, 0);
+    for (int u = kUnitAlbedo; u <= kUnitIndirectSpecular; ++u) glBindSampler(u, 0);
 }
 
 void Renderer::renderToneMap(const FrameSettings& fs) {
@@ -447,6 +470,7 @@ std::vector<DebugView> Renderer::debugViews() const {
     add("roughnessMetallic", mMaterial, kViewDisplay);
     add("emissive", mEmissive, kViewColor);
     add("indirect", mIndirect, kViewColor);
+    add("indirectSpecular", mIndirectSpecular, kViewColor);
     if (mTechnique)
         for (DebugView& tv : mTechnique->debugViews()) v.push_back(tv);
     for (DebugView& sv : mSSAO.debugViews()) v.push_back(sv);
@@ -472,7 +496,7 @@ std::vector<PassStats> Renderer::passStats() const {
         size_t bytes = 0;
         if (r.name == "shadows") bytes = shadowBytes;
         else if (r.name == "gbuffer") bytes = gbuffer;
-        else if (r.name == "indirect") bytes = mIndirect.bytes();
+        else if (r.name == "indirect") bytes = mIndirect.bytes() + mIndirectSpecular.bytes();
         else if (r.name == "lighting") bytes = mHDR.bytes();
         else if (r.name == "tonemap") bytes = mLDR.bytes();
         else if (r.name == "ssao") bytes = mSSAO.memoryBytes();  // both AO targets; the blur pass holds none
@@ -487,7 +511,7 @@ size_t Renderer::memoryBytes() const {
     if (mTechnique) total += mTechnique->memoryBytes();
     total += mSSAO.memoryBytes();
     for (auto& s : mShadows) total += s.depth.bytes();
-    for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mHDR, &mLDR})
+    for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mIndirectSpecular, &mHDR, &mLDR})
         total += t->bytes();
     return total;
 }
@@ -542,6 +566,8 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     int count = 1;
     if (view.target == GL_TEXTURE_CUBE_MAP) {
         units[0] = kUnitSourceCube;
+    } else if (view.target == GL_TEXTURE_3D && (view.mode == kViewVoxelPacked || view.mode == kViewVoxelPackedNormal)) {
+        units[0] = kUnitSourceU3D;
     } else if (view.target == GL_TEXTURE_3D) {
         units[0] = kUnitSource3D;
         units[1] = kUnitSource3D + 1;

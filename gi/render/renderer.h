@@ -5,8 +5,8 @@
 // Passes in order:
 //   shadows   one depth map per shadow-casting light (2D for directional and spot, cube for point)
 //   gbuffer   albedo RGBA8, normal RGBA16F, roughness/metallic RGBA8, emissive RGBA16F, depth 32F
-//   indirect  the technique's indirect irradiance / pi (RGBA16F); technique none fills the
-//             constant ambient radiance
+//   indirect  the technique's indirect irradiance / pi (RGBA16F) and, from VCT, specular radiance
+//             (RGBA16F, else 0); technique none fills the constant ambient radiance
 //   lighting  emission + albedo * indirect, then each light added with its shadow (HDR RGBA16F)
 //   tonemap   exposure, tone curve, sRGB into RGBA8
 #pragma once
@@ -61,6 +61,9 @@ public:
     // before upload so budgets can refuse it first.
     static size_t estimateBytes(const Scene& scene);
     GLuint texture(int index) const { return index >= 0 ? mTextures[index].id() : 0; }
+    const std::vector<Material>& materials() const { return mMaterials; }
+    // Distinct for every GPUScene made in the process, so techniques can tell a new scene apart.
+    uint64_t id() const { return mId; }
     size_t memoryBytes() const { return mBytes; }
     const Bounds& bounds() const { return mBounds; }
 
@@ -72,6 +75,7 @@ private:
     std::vector<Material> mMaterials;
     Bounds mBounds;
     size_t mBytes = 0;
+    uint64_t mId = 0;
 };
 
 class Renderer {
@@ -143,9 +147,10 @@ private:
     gl::Texture mWhite;
 
     int mWidth = 0, mHeight = 0;
-    gl::Texture mAlbedo, mNormal, mMaterial, mEmissive, mDepth, mIndirect, mHDR, mLDR;
+    gl::Texture mAlbedo, mNormal, mMaterial, mEmissive, mDepth, mIndirect, mIndirectSpecular, mHDR, mLDR;
     gl::Framebuffer mGBufferFBO, mHDRFBO, mLDRFBO;
     std::vector<ShadowMap> mShadows;  // one per light; empty depth when the light casts none
+    std::vector<ShadowMapView> mShadowViews;
     int mShadowSize = 0;
     std::vector<LightType> mShadowTypes;
     std::vector<bool> mShadowCast;

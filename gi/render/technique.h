@@ -16,12 +16,23 @@ namespace gi {
 class GPUScene;
 struct DebugView;
 
+// A shadow map the renderer drew this frame, for techniques that test light visibility (VCT
+// injection). depth is 0 for lights that cast no shadows.
+struct ShadowMapView {
+    GLuint depth = 0;
+    bool cube = false;          // point lights: a cube map of distance / far
+    glm::mat4 viewProj{1.0f};   // 2D maps
+    float far = 1.0f;           // cube maps
+};
+
 struct FrameContext {
     const FrameSettings& settings;
     const GPUScene& scene;
     glm::mat4 view, proj, viewProj, invViewProj;
     GLuint albedo, normal, material, depth;  // the G-buffer
     GLuint indirect;                         // output, RGBA16F image: every pixel is written
+    GLuint indirectSpecular;                 // optional output, RGBA16F: specular radiance (cleared to 0)
+    const std::vector<ShadowMapView>& shadows;  // one per light, as fs.lights
     int width, height;
     gl::GpuTimer& timer;                     // techniques time each pass under its own name
 };

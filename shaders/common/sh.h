@@ -25,6 +25,12 @@ GI_SH_CONST float kCosLobe1 = 1.02332671f;   // sqrt(pi / 3): band 1
 GI_SH_FUNC vec4 shBasis(vec3 d) { return vec4(kY00, -kY1 * d.y, kY1 * d.z, -kY1 * d.x); }
 // Coefficients of the clamped cosine lobe max(dot(n, w), 0) around n.
 GI_SH_FUNC vec4 shCosLobe(vec3 n) { return vec4(kCosLobe0, -kCosLobe1 * n.y, kCosLobe1 * n.z, -kCosLobe1 * n.x); }
+// Radiance 1 over the hemisphere around n and 0 behind (one side of a Lambertian surface, VCT's
+// SH voxels): band 0 is 2 pi Y00 = sqrt(pi), band 1 is pi Y1 along n. It evaluates to 1.25 along
+// n, 0.5 at grazing and -0.25 behind (clamp where evaluated); its integral is 2 pi.
+GI_SH_CONST float kHemisphere0 = 1.77245385f;  // sqrt(pi)
+GI_SH_CONST float kHemisphere1 = 1.53499006f;  // pi * kY1
+GI_SH_FUNC vec4 shHemisphere(vec3 n) { return vec4(kHemisphere0, -kHemisphere1 * n.y, kHemisphere1 * n.z, -kHemisphere1 * n.x); }
 // A function given by coefficients c, evaluated in direction d.
 GI_SH_FUNC float shEval(vec4 c, vec3 d) { return dot(c, shBasis(d)); }
 

@@ -22,6 +22,7 @@ GI_CONST int kUnitIndirect = 5;
 GI_CONST int kUnitShadow2D = 6;
 GI_CONST int kUnitShadowCube = 7;
 GI_CONST int kUnitAO = 8;  // ambient occlusion (gi/ssao), multiplies the indirect term
+GI_CONST int kUnitIndirectSpecular = 9;  // specular radiance from the technique (VCT's cone), or 0
 // Material base colour texture in the G-buffer and shadow passes.
 GI_CONST int kUnitBaseColor = 0;
 // Source texture of the view and tone-map passes.
@@ -57,6 +58,11 @@ GI_CONST int kViewPosition = 6;     // world positions: fract(p) as colour, so s
 GI_CONST int kViewSHVolume = 7;     // a slice of three RGB SH volumes: irradiance or one coefficient
 GI_CONST int kViewVolume = 8;       // a slice of one SH volume (the geometry volume): blocking or a coefficient
 GI_CONST int kUnitSource3D = 2;     // view.frag: R (or the only) volume; G and B on the next two units
+GI_CONST int kViewVoxelColor = 9;   // a slice of an RGBA volume at mip `level` (VCT radiance): rgb with exposure
+GI_CONST int kViewVoxelAlpha = 10;  // the same, alpha (opacity) as grey
+GI_CONST int kViewVoxelPacked = 11; // a slice of an r32ui volume of packed RGBA8 (VCT albedo, emission): rgb
+GI_CONST int kViewVoxelPackedNormal = 12;  // the same holding n * 0.5 + 0.5: shown as stored, empty black
+GI_CONST int kUnitSourceU3D = 5;    // view.frag: unsigned integer volumes
 
 #ifdef __cplusplus
 }  // namespace gi::shared

@@ -1,10 +1,14 @@
 // Base of the HDR image: emission plus the indirect term. The indirect texture holds
 // irradiance / pi, so a Lambert surface reflects albedo * indirect; metals have no diffuse.
-// Ambient occlusion (SSAO, any technique) scales the indirect term.
+// Ambient occlusion (SSAO, any technique) scales the indirect term. Specular radiance from the
+// technique (VCT's specular cone; 0 otherwise) is weighed by the split-sum approximation of the
+// GGX lobe's directional albedo (brdf.glsl envBRDFApprox).
 #include "render/gbuffer_common.glsl"
+#include "common/brdf.glsl"
 
 layout(binding = kUnitIndirect) uniform sampler2D uIndirect;
 layout(binding = kUnitAO) uniform sampler2D uAO;  // 1 everywhere when SSAO is off
+layout(binding = kUnitIndirectSpecular) uniform sampler2D uIndirectSpecular;
 
 in vec2 vUV;
 out vec4 oColor;
@@ -17,6 +21,10 @@ void main() {
         return;
     }
     vec3 emissive = texelFetch(uEmissiveTex, px, 0).rgb;
-    vec3 indirect = texelFetch(uIndirect, px, 0).rgb * texelFetch(uAO, px, 0).r;
-    oColor = vec4(emissive + s.baseColor * (1.0 - s.metallic) * indirect, 1.0);
+    float ao = texelFetch(uAO, px, 0).r;
+    vec3 indirect = texelFetch(uIndirect, px, 0).rgb * ao;
+    vec3 specular = texelFetch(uIndirectSpecular, px, 0).rgb * ao;
+    vec3 f0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    vec3 weight = envBRDFApprox(f0, s.roughness, max(dot(s.N, s.V), 1e-4));
+    oColor = vec4(emissive + s.baseColor * (1.0 - s.metallic) * indirect + specular * weight, 1.0);
 }

@@ -9,6 +9,7 @@ layout(binding = kUnitSourceCube) uniform samplerCube uSourceCube;
 layout(binding = kUnitSource3D) uniform sampler3D uVolumeR;
 layout(binding = kUnitSource3D + 1) uniform sampler3D uVolumeG;
 layout(binding = kUnitSource3D + 2) uniform sampler3D uVolumeB;
+layout(binding = kUnitSourceU3D) uniform usampler3D uVolumeU;
 uniform int uAxis;           // volume views: slice normal axis
 uniform float uSlice;        // volume views: slice position 0..1
 uniform int uSHComponent;    // -1: irradiance / blocking towards uDirection; else that coefficient
@@ -67,6 +68,25 @@ void main() {
         return;
     }
     vec4 v;
+    if (uMode >= kViewVoxelColor && uMode <= kViewVoxelPackedNormal) {
+        // Voxel volumes: the nearest voxel of mip `level`, so single voxels stay visible.
+        vec3 p = volumeCoord(uv);
+        vec3 c;
+        if (uMode >= kViewVoxelPacked) {
+            ivec3 size = textureSize(uVolumeU, 0);
+            uint packedValue = texelFetch(uVolumeU, clamp(ivec3(p * vec3(size)), ivec3(0), size - 1), 0).r;
+            c = unpackUnorm4x8(packedValue).rgb;
+            if (uMode == kViewVoxelPacked) c = linearToSRGB(c * uExposureScale);
+        } else {
+            int level = int(uLevel);
+            ivec3 size = textureSize(uVolumeR, level);
+            vec4 s = texelFetch(uVolumeR, clamp(ivec3(p * vec3(size)), ivec3(0), size - 1), level);
+            c = uMode == kViewVoxelAlpha ? vec3(s.a) : linearToSRGB(s.rgb * uExposureScale);
+            if (uFalseColour) c = falseColour(uMode == kViewVoxelAlpha ? s.a : max(s.r, max(s.g, s.b)) * uExposureScale);
+        }
+        oColor = vec4(c, 1.0);
+        return;
+    }
     if (uMode == kViewSHVolume || uMode == kViewVolume) {
         vec3 p = volumeCoord(uv);
         vec3 c;

@@ -1,0 +1,526 @@
+#include "gi/vct/vct.h"
+
+#include "common/shared.h"
+#include "gi/render/renderer.h"
+#include "gi/util/error.h"
+#include "vct/vct_shared.h"
+
+#include <cmath>
+
+namespace gi {
+
+namespace {
+
+constexpr size_t kVoxelBytes = 3 * 4 + 2 * 8;  // albedo, normal, emission (r32ui); exit front/back (RGBA16F)
+
+size_t voxels(int res) { return size_t(res) * res * res; }
+GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
+
+size_t mipChain(size_t bytesPerTexel, int res, int levels) {
+    size_t total = 0;
+    for (int l = 0; l < levels; ++l) total += bytesPerTexel * voxels(std::max(res >> l, 1));
+    return total;
+}
+
+int levelCountOf(const VCTSettings& s) { return s.mode == VCTMode::Dense ? 1 : s.levelCount; }
+bool anisotropicOn(const VCTSettings& s) { return s.anisotropic && !s.sh && s.mode == VCTMode::Dense; }
+bool shOn(const VCTSettings& s) { return s.sh && s.mode == VCTMode::Dense; }
+
+// Positive remainder, for toroidal texel offsets.
+glm::ivec3 wrapOf(const glm::ivec3& origin, int res) { return ((origin % res) + res) % res; }
+
+gl::Sampler makeSampler(GLenum wrap, GLenum minFilter) {
+    GLuint s = 0;
+    glCreateSamplers(1, &s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GLint(minFilter));
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glSamplerParameteri(s, w, GLint(wrap));
+    const float border[4] = {0, 0, 0, 0};
+    glSamplerParameterfv(s, GL_TEXTURE_BORDER_COLOR, border);
+    return gl::Sampler(s);
+}
+
+}  // namespace
+
+int vctMipCount(int resolution) {
+    int count = 1;
+    for (int r = resolution; r > 1 && r % 2 == 0; r /= 2) ++count;
+    return count;
+}
+
+std::vector<VoxelBox> vctLevels(const VCTSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
+                                const glm::vec3& camera) {
+    std::vector<VoxelBox> boxes;
+    glm::vec3 size = sceneMax - sceneMin;
+    float sceneSize = std::max(std::max(size.x, size.y), std::max(size.z, 1e-3f));
+    int res = s.gridResolution;
+    if (s.mode == VCTMode::Dense) {
+        VoxelBox b;
+        float extent = s.levelExtent > 0.0f ? s.levelExtent : sceneSize * 1.02f;
+        b.cellSize = extent / float(res);
+        b.min = s.levelExtent > 0.0f ? camera - glm::vec3(0.5f * extent) : 0.5f * (sceneMin + sceneMax) - glm::vec3(0.5f * extent);
+        boxes.push_back(b);
+        return boxes;
+    }
+    // Fitting the scene: the coarsest level, centred on the camera, holds the whole scene.
+    glm::vec3 reach = glm::max(glm::abs(camera - sceneMin), glm::abs(sceneMax - camera));
+    float coarsest = 2.04f * std::max(reach.x, std::max(reach.y, reach.z));
+    float finest = s.levelExtent > 0.0f ? s.levelExtent : coarsest / float(1 << (s.levelCount - 1));
+    // Cascaded levels move in steps of res/8 voxels (seed 000), clipmap levels in single voxels.
+    int snap = s.mode == VCTMode::Cascaded ? std::max(res / 8, 1) : 1;
+    for (int k = 0; k < s.levelCount; ++k) {
+        VoxelBox b;
+        b.cellSize = finest * float(1 << k) / float(res);
+        glm::vec3 corner = camera / b.cellSize - glm::vec3(0.5f * float(res));
+        b.origin = glm::ivec3(glm::round(corner / float(snap))) * snap;
+        b.min = glm::vec3(b.origin) * b.cellSize;
+        boxes.push_back(b);
+    }
+    return boxes;
+}
+
+VCT::VCT()
+    : mVoxelizeProg("vct.voxelize", {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
+                                     {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
+                                     {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}),
+      mClearProg("vct.clear", {{GL_COMPUTE_SHADER, "vct/clear.comp"}}),
+      mInjectProg("vct.inject", {{GL_COMPUTE_SHADER, "vct/inject.comp"}}),
+      mResolveProg("vct.resolve", {{GL_COMPUTE_SHADER, "vct/resolve.comp"}}),
+      mMipProg("vct.mip", {{GL_COMPUTE_SHADER, "vct/mip.comp"}}),
+      mUpsampleProg("vct.upsample", {{GL_COMPUTE_SHADER, "vct/upsample.comp"}}) {
+    mEmptyFBO = gl::createFramebuffer();
+    mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
+    mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
+    mShadowSampler = makeSampler(GL_CLAMP_TO_EDGE, GL_LINEAR);
+    glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+
+VCT::~VCT() = default;
+
+size_t VCT::estimateBytes(const FrameSettings& fs) {
+    const VCTSettings& s = fs.vct;
+    int res = s.gridResolution, mips = vctMipCount(res);
+    size_t perLevel = voxels(res) * kVoxelBytes + mipChain(8, res, mips);
+    size_t bytes = perLevel * size_t(levelCountOf(s));
+    if (anisotropicOn(s)) bytes += 6 * mipChain(8, res / 2, std::max(mips - 1, 1));
+    if (shOn(s)) bytes += 3 * mipChain(8, res, mips);
+    return bytes;
+}
+
+void VCT::allocate(const FrameSettings& fs) {
+    const VCTSettings& s = fs.vct;
+    int count = levelCountOf(s);
+    bool changed = s.gridResolution != mResolution || int(mLevels.size()) != count || s.mode != mMode ||
+                   anisotropicOn(s) != mAnisotropic || shOn(s) != mSHVoxels;
+    if (!changed) return;
+    mResolution = s.gridResolution;
+    mMipCount = vctMipCount(mResolution);
+    mMode = s.mode;
+    mAnisotropic = anisotropicOn(s);
+    mSHVoxels = shOn(s);
+    std::vector<std::string> defines = {"VCT_LEVELS " + std::to_string(count), std::string("VCT_ANISO ") + (mAnisotropic ? "1" : "0"),
+                                        std::string("VCT_SH ") + (mSHVoxels ? "1" : "0")};
+    mBounceProg = gl::Program("vct.bounce", {{GL_COMPUTE_SHADER, "vct/bounce.comp"}}, defines);
+    mTraceProg = gl::Program("vct.trace", {{GL_COMPUTE_SHADER, "vct/trace.comp"}}, defines);
+    mLevels.clear();
+    mVoxelBytes = mRadianceBytes = 0;
+    int r = mResolution;
+    for (int k = 0; k < count; ++k) {
+        Level l;
+        l.albedo = gl::Texture::create3D(GL_R32UI, r, r, r);
+        l.normal = gl::Texture::create3D(GL_R32UI, r, r, r);
+        l.emission = gl::Texture::create3D(GL_R32UI, r, r, r);
+        l.exitFront = gl::Texture::create3D(GL_RGBA16F, r, r, r);
+        l.exitBack = gl::Texture::create3D(GL_RGBA16F, r, r, r);
+        l.radiance = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
+        mVoxelBytes += l.albedo.bytes() * 3 + l.exitFront.bytes() * 2;
+        mRadianceBytes += l.radiance.bytes();
+        mLevels.push_back(std::move(l));
+    }
+    for (auto& t : mAniso) t = gl::Texture();
+    for (auto& t : mSH) t = gl::Texture();
+    if (mAnisotropic)
+        for (auto& t : mAniso) {
+            t = gl::Texture::create3D(GL_RGBA16F, r / 2, r / 2, r / 2, std::max(mMipCount - 1, 1));
+            mRadianceBytes += t.bytes();
+        }
+    if (mSHVoxels)
+        for (auto& t : mSH) {
+            t = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
+            mRadianceBytes += t.bytes();
+        }
+    glNamedFramebufferParameteri(mEmptyFBO.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, r);
+    glNamedFramebufferParameteri(mEmptyFBO.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, r);
+    mVoxelizedVoxels.assign(size_t(count), 0);
+}
+
+void VCT::execute(const FrameContext& ctx) {
+    allocate(ctx.settings);
+    updateGrids(ctx);
+    inject(ctx);
+    {
+        auto pass = ctx.timer.scope("vct.mip");
+        for (Level& l : mLevels) resolve(l, false);
+        buildMips();
+    }
+    bounce(ctx);
+    trace(ctx);
+}
+
+void VCT::setGridUniforms(const gl::Program& p, const Level& level) const {
+    p.set("uResolution", mResolution);
+    p.set("uGridMin", level.box.min);
+    p.set("uCellSize", level.box.cellSize);
+    p.set("uWrapOffset", mMode == VCTMode::Clipmap ? wrapOf(level.box.origin, mResolution) : glm::ivec3(0));
+}
+
+void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax) {
+    // Clear the region first (the whole grid, or a clipmap slab in its toroidal place).
+    mClearProg.use();
+    setGridUniforms(mClearProg, level);
+    mClearProg.set("uClipMin", clipMin);
+    mClearProg.set("uClipMax", clipMax);
+    glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(2, level.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    GLuint g = groups(mResolution, 4);
+    glDispatchCompute(g, g, g);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, mEmptyFBO.id());
+    glViewport(0, 0, mResolution, mResolution);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    mVoxelizeProg.use();
+    setGridUniforms(mVoxelizeProg, level);
+    mVoxelizeProg.set("uClipMin", clipMin);
+    mVoxelizeProg.set("uClipMax", clipMax);
+    mVoxelizeProg.set("uEmissionScale", 1.0f / mEmissionRange);
+    glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(2, level.emission.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindSampler(shared::kUnitBaseColor, mRepeat.id());
+    ctx.scene.draw([&](const Material& m, int) {
+        mVoxelizeProg.set("uBaseColor", m.baseColor);
+        mVoxelizeProg.set("uHasTexture", m.baseColorTexture >= 0 ? 1 : 0);
+        mVoxelizeProg.set("uAlphaCutoff", m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
+        mVoxelizeProg.set("uMetallic", m.metallic);
+        mVoxelizeProg.set("uEmissive", m.emissive);
+        if (m.baseColorTexture >= 0) glBindTextureUnit(shared::kUnitBaseColor, ctx.scene.texture(m.baseColorTexture));
+    });
+    glBindSampler(shared::kUnitBaseColor, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDepthMask(GL_TRUE);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glm::ivec3 size = glm::max(clipMax - clipMin, glm::ivec3(0));
+    ++mVoxelizationCount;
+    (void)size;
+}
+
+void VCT::updateGrids(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("vct.voxelize");
+    const Bounds& b = ctx.scene.bounds();
+    std::vector<VoxelBox> boxes = vctLevels(ctx.settings.vct, b.min, b.max, ctx.settings.camera.eye);
+    bool newScene = ctx.scene.id() != mSceneId;
+    if (newScene) {
+        mSceneId = ctx.scene.id();
+        mEmissionRange = 1e-6f;
+        for (const Material& m : ctx.scene.materials())
+            mEmissionRange = std::max(mEmissionRange, std::max(m.emissive.x, std::max(m.emissive.y, m.emissive.z)));
+    }
+    const int r = mResolution;
+    for (size_t k = 0; k < mLevels.size(); ++k) {
+        Level& l = mLevels[k];
+        const VoxelBox& nb = boxes[k];
+        bool sameLattice = l.voxelized && !newScene && l.box.cellSize == nb.cellSize;
+        mVoxelizedVoxels[k] = 0;
+        if (sameLattice && l.box.min == nb.min && l.box.origin == nb.origin) continue;
+        glm::ivec3 delta = nb.origin - l.box.origin;
+        bool partial = sameLattice && mMode == VCTMode::Clipmap && glm::all(glm::lessThan(glm::abs(delta), glm::ivec3(r)));
+        l.box = nb;
+        l.voxelized = true;
+        if (!partial) {
+            voxelize(ctx, l, glm::ivec3(0), glm::ivec3(r));
+            mVoxelizedVoxels[k] = voxels(r);
+            continue;
+        }
+        // Clipmap: only the slabs the move exposed, in the new grid's coordinates.
+        for (int axis = 0; axis < 3; ++axis) {
+            if (delta[axis] == 0) continue;
+            glm::ivec3 lo(0), hi(r);
+            if (delta[axis] > 0) lo[axis] = r - delta[axis];
+            else hi[axis] = -delta[axis];
+            voxelize(ctx, l, lo, hi);
+            glm::ivec3 size = hi - lo;
+            mVoxelizedVoxels[k] += size_t(size.x) * size_t(size.y) * size_t(size.z);
+        }
+    }
+}
+
+void VCT::inject(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("vct.inject");
+    const auto& lights = ctx.settings.lights;
+    mInjectProg.use();
+    mInjectProg.set("uEmissionRange", mEmissionRange);
+    for (Level& l : mLevels) {
+        setGridUniforms(mInjectProg, l);
+        glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(2, l.emission.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+        glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+        size_t first = 0;
+        do {
+            int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
+            mInjectProg.set("uLightCount", count);
+            mInjectProg.set("uAccumulate", first > 0 ? 1 : 0);
+            for (int i = 0; i < count; ++i) {
+                const LightSettings& light = lights[first + size_t(i)];
+                const ShadowMapView& sm = ctx.shadows[first + size_t(i)];
+                std::string a = "[" + std::to_string(i) + "]";
+                glm::vec3 dir = glm::length(light.direction) > 1e-8f ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
+                mInjectProg.set(("uLightType" + a).c_str(), int(light.type));
+                mInjectProg.set(("uLightColor" + a).c_str(), light.color * light.intensity);
+                mInjectProg.set(("uLightPos" + a).c_str(), light.position);
+                mInjectProg.set(("uLightDir" + a).c_str(), dir);
+                mInjectProg.set(("uLightRange" + a).c_str(), light.range);
+                mInjectProg.set(("uLightCos" + a).c_str(),
+                                glm::vec2(std::cos(glm::radians(std::min(light.innerConeDeg, light.outerConeDeg))),
+                                          std::cos(glm::radians(light.outerConeDeg))));
+                mInjectProg.set(("uShadowed" + a).c_str(), sm.depth ? 1 : 0);
+                mInjectProg.set(("uShadowViewProj" + a).c_str(), sm.viewProj);
+                mInjectProg.set(("uShadowFar" + a).c_str(), sm.far);
+                GLuint unit = GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i);
+                if (sm.depth) {
+                    glBindTextureUnit(unit, sm.depth);
+                    glBindSampler(unit, mShadowSampler.id());
+                }
+            }
+            GLuint g = groups(mResolution, 4);
+            glDispatchCompute(g, g, g);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            first += size_t(count);
+        } while (first < lights.size());
+    }
+    for (int u = 0; u < 2 * vct::kVCTMaxLights; ++u) glBindSampler(GLuint(vct::kVCTUnitShadow2D + u), 0);
+}
+
+void VCT::resolve(Level& level, bool bounced) {
+    mResolveProg.use();
+    setGridUniforms(mResolveProg, level);
+    mResolveProg.set("uSH", mSHVoxels ? 1 : 0);
+    glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(3, (bounced ? level.bouncedFront : level.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+    glBindImageTexture(4, (bounced ? level.bouncedBack : level.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+    glBindImageTexture(5, level.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (mSHVoxels) {
+        glBindImageTexture(6, mSH[0].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(7, mSH[1].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(2, mSH[2].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+    GLuint g = groups(mResolution, 4);
+    glDispatchCompute(g, g, g);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void VCT::buildMips() {
+    mMipProg.use();
+    auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction) {
+        int size = std::max(dst.width() >> dstLevel, 1);
+        mMipProg.set("uSourceLevel", srcLevel);
+        mMipProg.set("uDestSize", glm::ivec3(size));
+        mMipProg.set("uDirection", direction);
+        glBindTextureUnit(0, src.id());
+        glBindImageTexture(0, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        GLuint g = groups(size, 4);
+        glDispatchCompute(g, g, g);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    };
+    for (Level& l : mLevels)
+        for (int m = 1; m < mMipCount; ++m) level(l.radiance, m - 1, l.radiance, m, -1);
+    if (mSHVoxels)
+        for (auto& t : mSH)
+            for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1);
+    if (mAnisotropic)
+        for (int d = 0; d < 6; ++d) {
+            level(mLevels[0].radiance, 0, mAniso[size_t(d)], 0, d);
+            for (int m = 1; m < mMipCount - 1; ++m) level(mAniso[size_t(d)], m - 1, mAniso[size_t(d)], m, d);
+        }
+}
+
+void VCT::bindRadiance() const {
+    for (size_t k = 0; k < mLevels.size(); ++k) {
+        GLuint unit = GLuint(vct::kVCTUnitRadiance + int(k));
+        glBindTextureUnit(unit, mLevels[k].radiance.id());
+        glBindSampler(unit, mMode == VCTMode::Clipmap ? mRepeat.id() : mLinear.id());
+    }
+    for (int d = 0; d < 6; ++d) {
+        glBindTextureUnit(GLuint(vct::kVCTUnitAniso + d), mAniso[size_t(d)].id());
+        glBindSampler(GLuint(vct::kVCTUnitAniso + d), mLinear.id());
+    }
+    for (int c = 0; c < 3; ++c) {
+        glBindTextureUnit(GLuint(vct::kVCTUnitSH + c), mSH[size_t(c)].id());
+        glBindSampler(GLuint(vct::kVCTUnitSH + c), mLinear.id());
+    }
+}
+
+void VCT::setTraceUniforms(const gl::Program& p, const VCTSettings& s) const {
+    ConeSet set = makeConeSet(s);
+    p.set("uConeCount", int(set.cones.size()));
+    std::vector<glm::vec4> cones;
+    for (const Cone& c : set.cones) cones.emplace_back(c.direction, c.weight);
+    glProgramUniform4fv(p.id(), p.location("uCones[0]"), GLsizei(cones.size()), &cones[0][0]);
+    p.set("uTanHalf", std::tan(0.5f * set.aperture));
+    p.set("uLevelCount", int(mLevels.size()));
+    for (size_t k = 0; k < mLevels.size(); ++k) {
+        std::string i = "[" + std::to_string(k) + "]";
+        const VoxelBox& b = mLevels[k].box;
+        p.set(("uLevelMinCell" + i).c_str(), glm::vec4(b.min, b.cellSize));
+        p.set(("uLevelWrap" + i).c_str(), mMode == VCTMode::Clipmap ? wrapOf(b.origin, mResolution) : glm::ivec3(0));
+    }
+    p.set("uMaxLod", float(mMipCount - 1));
+    p.set("uNudge", s.nudge);
+    p.set("uStepMultiplier", s.stepMultiplier);
+    const VoxelBox& outer = mLevels.back().box;
+    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : outer.extent(mResolution) * 1.7320508f;
+    p.set("uMaxDistance", maxDistance);
+}
+
+void VCT::bounce(const FrameContext& ctx) {
+    const VCTSettings& s = ctx.settings.vct;
+    if (s.bounceCount <= 1) return;
+    auto pass = ctx.timer.scope("vct.bounce");
+    // Each bounce leaves direct light (exitFront/Back, kept) + the light gathered through the
+    // volumes, in bouncedFront/Back, which resolve() then reads.
+    for (Level& l : mLevels)
+        if (l.bouncedFront.width() != mResolution) {
+            l.bouncedFront = gl::Texture::create3D(GL_RGBA16F, mResolution, mResolution, mResolution);
+            l.bouncedBack = gl::Texture::create3D(GL_RGBA16F, mResolution, mResolution, mResolution);
+            mVoxelBytes += l.bouncedFront.bytes() * 2;
+        }
+    for (int b = 1; b < s.bounceCount; ++b) {
+        mBounceProg.use();
+        setTraceUniforms(mBounceProg, s);
+        // Start at least a voxel diagonal out so a voxel does not gather its own light.
+        mBounceProg.set("uNudge", std::max(s.nudge, 1.0f));
+        bindRadiance();
+        for (Level& l : mLevels) {
+            setGridUniforms(mBounceProg, l);
+            glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+            glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+            glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            glBindImageTexture(5, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glBindImageTexture(6, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            GLuint g = groups(mResolution, 4);
+            glDispatchCompute(g, g, g);
+        }
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
+        for (Level& l : mLevels) resolve(l, true);
+        buildMips();
+    }
+}
+
+void VCT::trace(const FrameContext& ctx) {
+    auto pass = ctx.timer.scope("vct.trace");
+    const VCTSettings& s = ctx.settings.vct;
+    mTraceProg.use();
+    setTraceUniforms(mTraceProg, s);
+    setGridUniforms(mTraceProg, mLevels[0]);
+    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : mLevels.back().box.extent(mResolution) * 1.7320508f;
+    mTraceProg.set("uOcclusionDistance", s.vaoDistance > 0.0f ? s.vaoDistance : maxDistance);
+    mTraceProg.set("uVAO", s.vao ? 1 : 0);
+    mTraceProg.set("uVAOStrength", s.vaoStrength);
+    mTraceProg.set("uIntensity", s.intensity);
+    mTraceProg.set("uSpecularCone", s.specularCone ? 1 : 0);
+    mTraceProg.set("uSpecularAperture", glm::radians(glm::vec2(s.specularApertureMin, s.specularApertureMax)));
+    mTraceProg.set("uInvViewProj", ctx.invViewProj);
+    mTraceProg.set("uCameraPos", ctx.settings.camera.eye);
+    glm::ivec2 full(ctx.width, ctx.height);
+    glm::ivec2 low = glm::max(glm::ivec2(glm::ceil(glm::vec2(full) * s.traceScale)), glm::ivec2(1));
+    bool scaled = low != full;
+    if (scaled && (mLowIndirect.width() != low.x || mLowIndirect.height() != low.y)) {
+        mLowIndirect = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
+        mLowSpecular = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
+    }
+    glm::vec2 toFull = glm::vec2(full) / glm::vec2(low);
+    mTraceProg.set("uSize", low);
+    mTraceProg.set("uFullSize", full);
+    mTraceProg.set("uToFull", toFull);
+    bindRadiance();
+    glBindTextureUnit(shared::kUnitNormal, ctx.normal);
+    glBindTextureUnit(shared::kUnitMaterial, ctx.material);
+    glBindTextureUnit(shared::kUnitDepth, ctx.depth);
+    glBindImageTexture(0, scaled ? mLowIndirect.id() : ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, scaled ? mLowSpecular.id() : ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups(low.x, 8), groups(low.y, 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
+    if (!scaled) return;
+    auto up = ctx.timer.scope("vct.upsample");
+    mUpsampleProg.use();
+    mUpsampleProg.set("uFullSize", full);
+    mUpsampleProg.set("uLowSize", low);
+    mUpsampleProg.set("uToFull", toFull);
+    mUpsampleProg.set("uNear", ctx.settings.camera.near);
+    mUpsampleProg.set("uFar", ctx.settings.camera.far);
+    glBindTextureUnit(0, mLowIndirect.id());
+    glBindTextureUnit(3, mLowSpecular.id());
+    glBindImageTexture(0, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups(full.x, 8), groups(full.y, 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+std::vector<DebugView> VCT::debugViews() const {
+    std::vector<DebugView> v;
+    int r = mResolution;
+    for (size_t k = 0; k < mLevels.size(); ++k) {
+        const Level& l = mLevels[k];
+        std::string s = mLevels.size() > 1 ? std::to_string(k) : "";
+        v.push_back({"vct.radiance" + s, l.radiance.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1});
+        v.push_back({"vct.opacity" + s, l.radiance.id(), GL_TEXTURE_3D, shared::kViewVoxelAlpha, r, r, 0, 1, 1});
+        v.push_back({"vct.albedo" + s, l.albedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
+        v.push_back({"vct.normal" + s, l.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1});
+        v.push_back({"vct.emission" + s, l.emission.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
+    }
+    const char* dirs[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    if (mAnisotropic)
+        for (int d = 0; d < 6; ++d)
+            v.push_back({std::string("vct.anisotropic") + dirs[d], mAniso[size_t(d)].id(), GL_TEXTURE_3D, shared::kViewVoxelColor,
+                         r / 2, r / 2, 0, 1, 1});
+    if (mSHVoxels) {
+        DebugView sh{"vct.sh", mSH[0].id(), GL_TEXTURE_3D, shared::kViewSHVolume, r, r, 0, 1, 1};
+        sh.extra[0] = mSH[1].id();
+        sh.extra[1] = mSH[2].id();
+        v.push_back(sh);
+    }
+    return v;
+}
+
+size_t VCT::passMemory(const std::string& pass) const {
+    if (pass == "vct.voxelize") return mVoxelBytes;
+    if (pass == "vct.upsample") return mLowIndirect.bytes() + mLowSpecular.bytes();
+    if (pass == "vct.mip") return mRadianceBytes;
+    return 0;
+}
+
+size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndirect.bytes() + mLowSpecular.bytes(); }
+
+bool VCT::reloadShaders(std::string& log) {
+    bool ok = true;
+    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mBounceProg,
+                           &mTraceProg})
+        if (!p->reload()) {
+            ok = false;
+            log += p->log() + "\n";
+        }
+    return ok;
+}
+
+}  // namespace gi

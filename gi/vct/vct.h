@@ -1,0 +1,144 @@
+// Voxel cone tracing (Crassin et al. 2011, "CNS+11"), as seed 000 section 1 implements it on a
+// dense 3D texture, with seed 003's cone set, anisotropic mips and clipmap, in OpenGL 4.5.
+//
+// Passes (timer names in brackets):
+//   1. Voxelization [vct.voxelize]: one draw of the scene per grid (or per newly exposed clipmap
+//      slab). The geometry stage projects each triangle along its dominant axis onto a viewport
+//      of one pixel per voxel column and grows it for conservative rasterization (edges moved
+//      out by half a pixel's extent, an AABB clip in the fragment stage); the fragment stage
+//      writes diffuse albedo, normal and emission into r32ui volumes by an atomic running average
+//      of RGBA8 (rgb the mean, a the count, as seeds 000 and 003). Opacity is 1 where anything
+//      was written. The geometry is static, so a grid is voxelized again only when the scene or
+//      the grid's placement changes.
+//   2. Injection [vct.inject]: per voxel, the direct light of every light on each side of its
+//      mean normal with a test against the renderer's shadow map, turned into the radiance each
+//      side leaves (albedo * E / pi) plus emission. resolve.comp writes the traced volume:
+//      isotropic premultiplied RGBA16F (both sides summed, alpha = opacity) or, with `sh`, 2-band
+//      SH per colour with each side a hemisphere of radiance around its normal.
+//   3. Bounces [vct.bounce], bounceCount - 1 times: every occupied voxel traces the diffuse cone
+//      set on both sides through the current mips and adds albedo * E / pi (seed 000's
+//      re-injection of the first traced indirect light), then resolve and mips again.
+//   4. Mips [vct.mip]: a box filter of premultiplied RGBA (or SH); with `anisotropic`, six
+//      volumes of half resolution, one per marching direction, each compositing the children's
+//      pairs front to back along it (seed 003 section 1.6 describes them, unimplemented there).
+//   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
+//      specular cone along the reflection gives radiance for the composite's split-sum weight;
+//      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With
+//      traceScale < 1 the cones run on a smaller image and a joint bilateral filter (depth and
+//      normal) upsamples it [vct.upsample]: diffuse indirect light is smooth, and the trace is
+//      most of the frame's cost on a CPU rasterizer.
+//
+// Grids (`mode`):
+//   - dense: one grid, the scene's bounding cube (2 % larger), so any glTF without a preset works.
+//   - cascaded (seed 000): levelCount grids of equal resolution, each twice the extent of the
+//     previous (levelExtent 0: the coarsest holds the whole scene around the camera), centred on the camera and snapped to multiples of res/8 voxels of their own size
+//     (so they move rarely and do not flicker); a level that moves is voxelized again whole.
+//   - clipmap (seed 003 section 2): the same nesting, snapped to single voxels, stored with
+//     toroidal addressing (texel = world voxel mod res, sampled with GL_REPEAT); when the camera
+//     moves, only the newly exposed slabs of a level are cleared and voxelized.
+//   Both sample the finest level that holds a point at lod log2(diameter / its voxel) and blend
+//   to the next over the outer tenth of the level. Each level keeps its own mip chain.
+//
+// Choices where the seeds are silent (documented and tested, see also trace.glsl):
+//   - Cone aperture 60 degrees for both sets (seed 000 states 60 for its nine cones); weights
+//     cos(theta) normalised to one; the nudge is in voxel diagonals (seed 000's voxSize) over
+//     max(n.w, 0.25); maxDistance 0 means the grid's diagonal; the specular aperture is lerped by
+//     perceptual roughness from 1 to 80 degrees (seed 000's numbers).
+//   - Anisotropic and SH volumes apply to dense mode (units for six volumes per level run out);
+//     with both on, SH is used.
+//   - Emission is stored divided by the scene's largest emission so it fits RGBA8.
+// Known artefacts: light leaks through walls thinner than a voxel (isotropic voxels radiate to
+// both sides), colour mixing in coarse isotropic mips, self-occlusion at small nudges, thin
+// geometry lost at coarse mips.
+#pragma once
+
+#include "gi/gl/handle.h"
+#include "gi/gl/shader.h"
+#include "gi/render/technique.h"
+#include "gi/vct/cone_set.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+
+namespace gi {
+
+// Placement of one voxel grid (level): world minimum, voxel size, and for the nested modes the
+// integer voxel coordinates of its minimum (min = origin * cellSize).
+struct VoxelBox {
+    glm::vec3 min{0.0f};
+    float cellSize = 1.0f;
+    glm::ivec3 origin{0};
+    float extent(int resolution) const { return cellSize * float(resolution); }
+};
+
+// The grids for a frame (exposed for tests and the editor).
+std::vector<VoxelBox> vctLevels(const VCTSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
+                                const glm::vec3& camera);
+
+// Mip levels of a grid of this resolution: halving while the size stays even (so toroidal
+// addressing keeps mip texels aligned), at most log2(res) + 1.
+int vctMipCount(int resolution);
+
+class VCT : public Technique {
+public:
+    VCT();
+    ~VCT() override;
+
+    static size_t estimateBytes(const FrameSettings& fs);
+
+    void execute(const FrameContext& ctx) override;
+    std::vector<DebugView> debugViews() const override;
+    size_t passMemory(const std::string& pass) const override;
+    size_t memoryBytes() const override;
+    bool reloadShaders(std::string& log) override;
+
+    struct Level {
+        gl::Texture albedo, normal, emission;   // r32ui running averages
+        gl::Texture exitFront, exitBack;        // RGBA16F radiance each side leaves
+        gl::Texture bouncedFront, bouncedBack;  // direct + gathered light after a bounce (bounceCount > 1)
+        gl::Texture radiance;                   // RGBA16F premultiplied radiance + opacity, mips
+        VoxelBox box;
+        bool voxelized = false;
+    };
+    const std::vector<Level>& levels() const { return mLevels; }
+    const std::array<gl::Texture, 6>& anisotropicVolumes() const { return mAniso; }
+    const std::array<gl::Texture, 3>& shVolumes() const { return mSH; }
+    int resolution() const { return mResolution; }
+    // Voxels written by the last clipmap update, per level (a full level counts res^3).
+    const std::vector<size_t>& voxelizedVoxels() const { return mVoxelizedVoxels; }
+    // Voxelizations run since creation (tests: a static grid is not voxelized twice).
+    int voxelizationCount() const { return mVoxelizationCount; }
+
+private:
+    gl::Program mVoxelizeProg, mClearProg, mInjectProg, mResolveProg, mMipProg, mUpsampleProg;
+    gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
+    gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
+    std::vector<Level> mLevels;
+    std::array<gl::Texture, 6> mAniso;
+    std::array<gl::Texture, 3> mSH;
+    gl::Framebuffer mEmptyFBO;
+    gl::Sampler mLinear, mRepeat, mShadowSampler;
+    int mResolution = 0, mMipCount = 0;
+    bool mAnisotropic = false, mSHVoxels = false;
+    VCTMode mMode = VCTMode::Dense;
+    uint64_t mSceneId = 0;
+    size_t mVoxelBytes = 0, mRadianceBytes = 0;
+    std::vector<size_t> mVoxelizedVoxels;
+    int mVoxelizationCount = 0;
+    float mEmissionRange = 1.0f;
+
+    void allocate(const FrameSettings& fs);
+    void setGridUniforms(const gl::Program& p, const Level& level) const;
+    void setTraceUniforms(const gl::Program& p, const VCTSettings& s) const;
+    void voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax);
+    void updateGrids(const FrameContext& ctx);
+    void inject(const FrameContext& ctx);
+    void resolve(Level& level, bool bounced);
+    void buildMips();
+    void bounce(const FrameContext& ctx);
+    void trace(const FrameContext& ctx);
+    void bindRadiance() const;
+};
+
+}  // namespace gi

@@ -1,0 +1,85 @@
+// Settings of voxel cone tracing (gi/vct/vct.h describes the technique).
+#pragma once
+
+#include "gi/preset/settings.h"
+
+namespace gi {
+
+// How the voxel grid covers the scene.
+enum class VCTMode { Dense, Cascaded, Clipmap };
+template <>
+struct EnumNames<VCTMode> {
+    static constexpr std::array<std::pair<VCTMode, const char*>, 3> values{
+        {{VCTMode::Dense, "dense"}, {VCTMode::Cascaded, "cascaded"}, {VCTMode::Clipmap, "clipmap"}}};
+};
+
+// Which diffuse cones are traced (gi/vct/cone_set.h gives their directions and weights).
+enum class ConeSetKind { Six, Nine, Custom };
+template <>
+struct EnumNames<ConeSetKind> {
+    static constexpr std::array<std::pair<ConeSetKind, const char*>, 3> values{
+        {{ConeSetKind::Six, "six"}, {ConeSetKind::Nine, "nine"}, {ConeSetKind::Custom, "custom"}}};
+};
+
+// How the diffuse cones' results are weighted before they are normalised to sum to one.
+enum class ConeWeighting { Cosine, Equal };
+template <>
+struct EnumNames<ConeWeighting> {
+    static constexpr std::array<std::pair<ConeWeighting, const char*>, 2> values{
+        {{ConeWeighting::Cosine, "cosine"}, {ConeWeighting::Equal, "equal"}}};
+};
+
+struct VCTSettings {
+    static constexpr std::string_view kSection = "vct";
+    int gridResolution = 64;          // voxels per side of the grid (of every level in cascaded and clipmap modes)
+    VCTMode mode = VCTMode::Dense;    // dense: one grid over the scene; cascaded and clipmap: nested levels around the camera
+    int levelCount = 3;               // cascaded and clipmap: nested levels, each twice the extent of the previous
+    float levelExtent = 0.0f;         // cascaded and clipmap: world size of the finest level; 0 fits the scene
+    ConeSetKind coneSet = ConeSetKind::Nine;        // six (seed 003), nine (seed 000) or custom
+    int coneCount = 16;               // custom set: number of diffuse cones
+    float coneAperture = 60.0f;       // full aperture of every diffuse cone, degrees
+    ConeWeighting coneWeighting = ConeWeighting::Cosine;  // cone weights before normalisation
+    float nudge = 2.0f;               // start offset in voxel diagonals over n.w (seed 000 eq. 3.4)
+    float stepMultiplier = 1.0f;      // step = multiplier * cone diameter; below 1 oversamples
+    float maxDistance = 0.0f;         // cone length in world units; 0 = the grid's diagonal
+    int bounceCount = 1;              // 1: direct light in the voxels; 2 or 3 re-inject traced indirect light
+    bool anisotropic = true;          // six directional mip volumes instead of one (isotropic voxels only)
+    bool sh = false;                  // store voxel radiance as 2-band SH per colour (direction-dependent)
+    bool specularCone = true;         // trace one cone along the reflection, aperture from roughness
+    float specularApertureMin = 1.0f;   // specular cone aperture at roughness 0, degrees
+    float specularApertureMax = 80.0f;  // specular cone aperture at roughness 1, degrees
+    bool vao = false;                 // voxel ambient occlusion from the diffuse cones' alpha
+    float vaoStrength = 1.0f;         // 0: no effect, 1: indirect light times the cones' visibility
+    float vaoDistance = 0.0f;         // occluders farther than this do not occlude; 0 = maxDistance
+    float intensity = 1.0f;           // scale of the indirect light
+    float traceScale = 0.5f;          // cones are traced per pixel of an image this much smaller per side, then upsampled
+
+    template <class V>
+    void visit(V&& v) {
+        v(gridResolution, {"gridResolution", "Voxels per side of the grid (of each level)", "voxels", 32, 256, Cost::Reallocate, 1});
+        v(mode, {"mode", "dense: one grid over the scene; cascaded: nested grids snapped to res/8 cells; clipmap: nested grids with toroidal updates", "", 0, 0, Cost::Reallocate});
+        v(levelCount, {"levelCount", "Nested levels in cascaded and clipmap modes", "", 1, 6, Cost::Reallocate});
+        v(levelExtent, {"levelExtent", "World size of the finest level (0: fit the scene)", "m", 0, 1e5});
+        v(coneSet, {"coneSet", "Diffuse cones: six (seed 003), nine (seed 000) or custom (coneCount on the hemisphere)"});
+        v(coneCount, {"coneCount", "Diffuse cones of the custom set", "", 1, 32});
+        v(coneAperture, {"coneAperture", "Full aperture of each diffuse cone", "deg", 5, 120});
+        v(coneWeighting, {"coneWeighting", "Diffuse cone weights: cosine of the angle to the normal, or equal"});
+        v(nudge, {"nudge", "Cone start offset in voxel diagonals, divided by n.w (seed 000 eq. 3.4)", "voxels", 0, 8});
+        v(stepMultiplier, {"stepMultiplier", "Step length in cone diameters", "", 0.1, 4});
+        v(maxDistance, {"maxDistance", "Cone length (0: the grid's diagonal)", "m", 0, 1e5});
+        v(bounceCount, {"bounceCount", "Light bounces stored in the voxels (2 or 3 re-inject traced light)", "", 1, 3});
+        v(anisotropic, {"anisotropic", "Six directional mip volumes (seed 003); isotropic voxels only", "", 0, 0, Cost::Reallocate});
+        v(sh, {"sh", "Voxel radiance as 2-band SH per colour (seed 000's VCT SH)", "", 0, 0, Cost::Reallocate});
+        v(specularCone, {"specularCone", "Trace a specular cone along the reflection", ""});
+        v(specularApertureMin, {"specularApertureMin", "Specular cone aperture at roughness 0", "deg", 0.5, 120});
+        v(specularApertureMax, {"specularApertureMax", "Specular cone aperture at roughness 1", "deg", 0.5, 120});
+        v(vao, {"vao", "Voxel ambient occlusion from the diffuse cones", ""});
+        v(vaoStrength, {"vaoStrength", "Strength of the voxel ambient occlusion", "", 0, 1});
+        v(vaoDistance, {"vaoDistance", "Occlusion range of the VAO (0: maxDistance)", "m", 0, 1e5});
+        v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
+        v(traceScale, {"traceScale", "Resolution scale of the cone trace (depth- and normal-aware upsampling below 1)", "", 0.125, 1,
+                       Cost::Reallocate, 0.125});
+    }
+};
+
+}  // namespace gi

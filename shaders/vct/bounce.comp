@@ -1,0 +1,45 @@
+// One more bounce in the voxels: every occupied voxel traces the diffuse cone set on both sides
+// of its mean normal through the current radiance volumes (direct light plus the bounces so far)
+// and leaves its direct radiance plus albedo * E / pi (seed 000 re-injects the traced light; the
+// cones start one voxel diagonal out, more with a larger nudge, so a voxel does not light itself).
+// resolve.comp and the mip pass then rebuild the traced volumes.
+#include "vct/trace.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
+layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
+layout(binding = 3, rgba16f) uniform readonly image3D uDirectFront;  // inject.comp's result
+layout(binding = 4, rgba16f) uniform readonly image3D uDirectBack;
+layout(binding = 5, rgba16f) uniform writeonly image3D uExitFront;   // what resolve.comp reads next
+layout(binding = 6, rgba16f) uniform writeonly image3D uExitBack;
+
+uniform int uConeCount;
+uniform vec4 uCones[kVCTMaxCones];
+uniform float uTanHalf;
+uniform float uMaxDistance;
+
+vec3 hemisphere(vec3 p, vec3 n) {
+    mat3 frame = tangentFrame(n);
+    vec3 e = vec3(0.0);
+    for (int i = 0; i < uConeCount; ++i) {
+        float occlusion;
+        e += uCones[i].w * traceCone(p, n, frame * uCones[i].xyz, uTanHalf, uMaxDistance, 0.0, occlusion).rgb;
+    }
+    return e;
+}
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (!insideGrid(v)) return;
+    ivec3 t = texelOf(v);
+    uint a = imageLoad(uAlbedoVox, t).r;
+    if (!occupied(a)) return;
+    vec3 albedo = unpackVoxel(a).rgb;
+    vec3 nn = unpackVoxel(imageLoad(uNormalVox, t).r).xyz * 2.0 - 1.0;
+    vec3 n = length(nn) > 1e-3 ? normalize(nn) : vec3(0.0, 1.0, 0.0);
+    vec3 p = voxelCentre(v);
+    // E / pi on each side; the surface then leaves albedo * E / pi.
+    vec3 front = hemisphere(p, n), back = hemisphere(p, -n);
+    imageStore(uExitFront, t, imageLoad(uDirectFront, t) + vec4(albedo * front, 0.0));
+    imageStore(uExitBack, t, imageLoad(uDirectBack, t) + vec4(albedo * back, 0.0));
+}

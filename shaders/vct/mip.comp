@@ -1,0 +1,47 @@
+// One mip level of a voxel volume from the level below. Isotropic (uDirection < 0): the mean of
+// the 8 children, premultiplied RGBA (or SH coefficients), as a box filter. Anisotropic (seed 003
+// section 1.6, after Crassin 2011): one volume per marching direction (+X, -X, +Y, -Y, +Z, -Z);
+// along that direction the two children of each of the 4 pairs are composited front to back
+// (front + (1 - front.a) * back), then the 4 pairs are averaged, so a cone marching that way sees
+// the near side of the block first.
+#include "common/shared.h"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0) uniform sampler3D uSource;
+layout(binding = 0, rgba16f) uniform writeonly image3D uDest;
+
+uniform int uSourceLevel;
+uniform ivec3 uDestSize;
+uniform int uDirection;  // -1: isotropic; 0..5: +X, -X, +Y, -Y, +Z, -Z
+
+void main() {
+    ivec3 d = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(d, uDestSize))) return;
+    ivec3 base = d * 2;
+    if (uDirection < 0) {
+        vec4 sum = vec4(0.0);
+        for (int i = 0; i < 8; ++i) sum += texelFetch(uSource, base + ivec3(i & 1, (i >> 1) & 1, i >> 2), uSourceLevel);
+        imageStore(uDest, d, sum * 0.125);
+        return;
+    }
+    int axis = uDirection / 2;
+    bool positive = (uDirection & 1) == 0;
+    ivec3 along = ivec3(0);
+    along[axis] = 1;
+    ivec3 u = ivec3(0), w = ivec3(0);
+    u[(axis + 1) % 3] = 1;
+    w[(axis + 2) % 3] = 1;
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < 4; ++i) {
+        ivec3 c = base + u * (i & 1) + w * (i >> 1);
+        vec4 near = texelFetch(uSource, c, uSourceLevel);
+        vec4 far = texelFetch(uSource, c + along, uSourceLevel);
+        if (!positive) {
+            vec4 t = near;
+            near = far;
+            far = t;
+        }
+        sum += near + (1.0 - near.a) * far;
+    }
+    imageStore(uDest, d, sum * 0.25);
+}

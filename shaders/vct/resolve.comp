@@ -1,0 +1,40 @@
+// The traced radiance volumes from the radiance each side of a voxel's surface leaves
+// (inject.comp, plus traced indirect light after a bounce). Isotropic voxels store the sum of
+// both sides, premultiplied by the opacity (1 where anything was voxelized); SH voxels store each
+// side as a hemisphere of radiance around its normal (common.glsl shHemisphere), so a cone sees
+// the lit side only. Opacity stays in the isotropic volume's alpha in both cases.
+#include "vct/common.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
+layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
+layout(binding = 3, rgba16f) uniform readonly image3D uExitFront;
+layout(binding = 4, rgba16f) uniform readonly image3D uExitBack;
+layout(binding = 5, rgba16f) uniform writeonly image3D uRadiance;
+layout(binding = 6, rgba16f) uniform writeonly image3D uSHR;
+layout(binding = 7, rgba16f) uniform writeonly image3D uSHG;
+layout(binding = 2, rgba16f) uniform writeonly image3D uSHB;
+
+uniform bool uSH;
+
+void main() {
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (!insideGrid(v)) return;
+    ivec3 t = texelOf(v);
+    vec3 front = vec3(0.0), back = vec3(0.0), n = vec3(0.0, 1.0, 0.0);
+    float alpha = 0.0;
+    if (occupied(imageLoad(uAlbedoVox, t).r)) {
+        vec3 nn = unpackVoxel(imageLoad(uNormalVox, t).r).xyz * 2.0 - 1.0;
+        if (length(nn) > 1e-3) n = normalize(nn);
+        front = imageLoad(uExitFront, t).rgb;
+        back = imageLoad(uExitBack, t).rgb;
+        alpha = 1.0;
+    }
+    imageStore(uRadiance, t, vec4(front + back, alpha));
+    if (uSH) {
+        vec4 hf = shHemisphere(n), hb = shHemisphere(-n);
+        imageStore(uSHR, t, front.r * hf + back.r * hb);
+        imageStore(uSHG, t, front.g * hf + back.g * hb);
+        imageStore(uSHB, t, front.b * hf + back.b * hb);
+    }
+}

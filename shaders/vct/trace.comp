@@ -1,0 +1,65 @@
+// Voxel cone tracing, per pixel (seed 000 section 1): the diffuse cone set around the G-buffer
+// normal gives E / pi = sum of weight * cone radiance (weights sum to one, gi/vct/cone_set.h);
+// the specular cone along the reflected view direction, its aperture lerped from
+// specularApertureMin to specularApertureMax by roughness (seed 000: 1 to 80 degrees), gives the
+// radiance the composite pass weighs with the split-sum approximation. VAO: the diffuse cones'
+// opacity within vaoDistance, weighted like their radiance, scales the indirect light.
+#include "vct/trace.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = kUnitNormal) uniform sampler2D uNormal;
+layout(binding = kUnitMaterial) uniform sampler2D uMaterial;
+layout(binding = kUnitDepth) uniform sampler2D uDepth;
+layout(binding = 0, rgba16f) uniform writeonly image2D uIndirect;
+layout(binding = 1, rgba16f) uniform writeonly image2D uSpecular;
+
+uniform mat4 uInvViewProj;
+uniform vec3 uCameraPos;
+uniform ivec2 uSize;        // the traced image (the G-buffer's size times traceScale)
+uniform ivec2 uFullSize;    // the G-buffer's size
+uniform vec2 uToFull;       // full-resolution pixels per traced pixel
+uniform int uConeCount;
+uniform vec4 uCones[kVCTMaxCones];  // xyz: tangent-space axis, w: normalised weight
+uniform float uTanHalf;             // tan of half the diffuse aperture
+uniform float uMaxDistance;
+uniform float uOcclusionDistance;
+uniform bool uVAO;
+uniform float uVAOStrength;
+uniform float uIntensity;
+uniform bool uSpecularCone;
+uniform vec2 uSpecularAperture;     // radians at roughness 0 and 1
+
+void main() {
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(q, uSize))) return;
+    // The traced pixel stands for the full-resolution pixel under its centre (upsample.comp reads the same).
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * uToFull), uFullSize - 1);
+    float depth = texelFetch(uDepth, px, 0).r;
+    vec3 indirect = vec3(0.0), specular = vec3(0.0);
+    if (depth < 1.0) {
+        vec2 uv = (vec2(px) + 0.5) / vec2(uFullSize);
+        vec4 w = uInvViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        vec3 p = w.xyz / w.w;
+        vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
+        mat3 frame = tangentFrame(n);
+        float visibility = 0.0;
+        for (int i = 0; i < uConeCount; ++i) {
+            float occlusion;
+            vec4 c = traceCone(p, n, frame * uCones[i].xyz, uTanHalf, uMaxDistance, uOcclusionDistance, occlusion);
+            indirect += uCones[i].w * c.rgb;
+            visibility += uCones[i].w * (1.0 - occlusion);
+        }
+        if (uVAO) indirect *= mix(1.0, visibility, uVAOStrength);
+        indirect *= uIntensity;
+        if (uSpecularCone) {
+            vec3 v = normalize(uCameraPos - p);
+            vec3 r = reflect(-v, n);
+            float roughness = texelFetch(uMaterial, px, 0).r;
+            float aperture = mix(uSpecularAperture.x, uSpecularAperture.y, roughness);
+            float occlusion;
+            specular = uIntensity * traceCone(p, n, r, tan(0.5 * aperture), uMaxDistance, 0.0, occlusion).rgb;
+        }
+    }
+    imageStore(uIndirect, q, vec4(indirect, 1.0));
+    imageStore(uSpecular, q, vec4(specular, 1.0));
+}

@@ -1,0 +1,140 @@
+// Cone tracing through the voxel levels (seed 000 section 1, seed 003 section 1), shared by the
+// screen trace (trace.comp) and the voxel bounce (bounce.comp).
+//
+// A cone with half-angle tan `tanHalf` starts `nudge` voxel diagonals from the apex divided by
+// n.w (seed 000 eq. 3.4; n.w is clamped at 0.25 so grazing cones do not start far away), then
+// marches: diameter d = max(2 tanHalf t, voxel), lod = log2(d / voxel), sample, composite front
+// to back (C += (1 - a) c, a += (1 - a) a_s), advance by stepMultiplier * d. A step longer than
+// the sample's own length thickens its opacity to 1 - (1 - a)^k (k = stepMultiplier), and a
+// shorter one thins it, so the result does not depend on the step much. The march ends at
+// maxDistance, at opacity 0.99, or when a sample's footprint lies wholly outside the coarsest level.
+//
+// Levels (cascaded and clipmap modes): level k has voxels 2^k times level 0's. A sample uses the
+// finest level that holds it (with half a coarse voxel of margin), at lod log2(d / voxel_k),
+// blended towards the next level over the outer tenth of the level, as the LPV cascades do.
+//
+// Variants (defines the host injects): VCT_LEVELS radiance volumes, VCT_ANISO six directional
+// volumes, VCT_SH three SH volumes. Each program declares only the samplers it uses: on Mesa
+// 22 llvmpipe a compute shader with more than 16 samplers reads garbage from the later ones,
+// silently.
+#include "vct/common.glsl"
+
+#ifndef VCT_LEVELS
+#define VCT_LEVELS 1
+#endif
+layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
+#if VCT_ANISO
+layout(binding = kVCTUnitAniso) uniform sampler3D uAnisoPX;
+layout(binding = kVCTUnitAniso + 1) uniform sampler3D uAnisoNX;
+layout(binding = kVCTUnitAniso + 2) uniform sampler3D uAnisoPY;
+layout(binding = kVCTUnitAniso + 3) uniform sampler3D uAnisoNY;
+layout(binding = kVCTUnitAniso + 4) uniform sampler3D uAnisoPZ;
+layout(binding = kVCTUnitAniso + 5) uniform sampler3D uAnisoNZ;
+#endif
+#if VCT_SH
+layout(binding = kVCTUnitSH) uniform sampler3D uSHR;
+layout(binding = kVCTUnitSH + 1) uniform sampler3D uSHG;
+layout(binding = kVCTUnitSH + 2) uniform sampler3D uSHB;
+#endif
+
+uniform int uLevelCount;
+uniform vec4 uLevelMinCell[kVCTMaxLevels];  // xyz: grid minimum, w: voxel size
+uniform ivec3 uLevelWrap[kVCTMaxLevels];    // toroidal offsets (clipmap), else 0
+uniform float uMaxLod;                      // mip levels per level - 1
+uniform float uNudge;
+uniform float uStepMultiplier;
+
+vec3 levelCoord(int k, vec3 p) {
+    return (p - uLevelMinCell[k].xyz) / (uLevelMinCell[k].w * float(uResolution)) + vec3(uLevelWrap[k]) / float(uResolution);
+}
+
+vec4 levelRadiance(int k, vec3 tc, float lod) {
+#if VCT_LEVELS == 1
+    return textureLod(uRadiance[0], tc, lod);
+#else
+    vec4 r = vec4(0.0);
+    for (int i = 0; i < VCT_LEVELS; ++i)
+        if (i == k) r = textureLod(uRadiance[i], tc, lod);
+    return r;
+#endif
+}
+
+#if VCT_ANISO
+vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
+    // Weights dir^2, each from the volume of the direction's sign.
+    vec3 w = dir * dir;
+    return w.x * (dir.x > 0.0 ? textureLod(uAnisoPX, tc, lod) : textureLod(uAnisoNX, tc, lod)) +
+           w.y * (dir.y > 0.0 ? textureLod(uAnisoPY, tc, lod) : textureLod(uAnisoNY, tc, lod)) +
+           w.z * (dir.z > 0.0 ? textureLod(uAnisoPZ, tc, lod) : textureLod(uAnisoNZ, tc, lod));
+}
+#endif
+
+// Premultiplied radiance towards the apex and opacity of level k at p, for a cone marching along dir.
+vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
+    vec3 tc = levelCoord(k, p);
+    lod = clamp(lod, 0.0, uMaxLod);
+#if VCT_SH
+    vec4 b = shBasis(-dir);
+    float a = levelRadiance(0, tc, lod).a;
+    vec3 c = vec3(dot(textureLod(uSHR, tc, lod), b), dot(textureLod(uSHG, tc, lod), b), dot(textureLod(uSHB, tc, lod), b));
+    return vec4(max(c, vec3(0.0)), a);
+#elif VCT_ANISO
+    if (lod >= 1.0) return sampleAniso(tc, lod - 1.0, dir);
+    return mix(levelRadiance(0, tc, lod), sampleAniso(tc, 0.0, dir), lod);
+#else
+    return levelRadiance(k, tc, lod);
+#endif
+}
+
+// The sample of the finest level that holds p, blended towards the next level over the outer
+// tenth of its extent. False outside every level.
+bool sampleVoxels(vec3 p, float diameter, vec3 dir, out vec4 s) {
+    for (int k = 0; k < uLevelCount; ++k) {
+        float extent = uLevelMinCell[k].w * float(uResolution);
+        vec3 d = abs(p - (uLevelMinCell[k].xyz + 0.5 * extent)) - 0.5 * extent;
+        float m = max(d.x, max(d.y, d.z));
+        // The outermost level also takes samples centred outside it whose footprint reaches in:
+        // with steps of a diameter, the sample that would reach a far wall is often centred past it.
+        if (m > (k + 1 == uLevelCount ? 0.5 * diameter : 0.0)) continue;
+        s = sampleLevel(k, p, log2(max(diameter / uLevelMinCell[k].w, 1.0)), dir);
+        float band = 0.1 * extent;
+        float e = clamp((m + band) / band, 0.0, 1.0);
+        if (e > 0.0 && k + 1 < uLevelCount)
+            s = mix(s, sampleLevel(k + 1, p, log2(max(diameter / uLevelMinCell[k + 1].w, 1.0)), dir), e);
+        return true;
+    }
+    s = vec4(0.0);
+    return false;
+}
+
+// Marches one cone; `occlusion` receives the opacity gathered within occlusionDistance.
+vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, float occlusionDistance,
+               out float occlusion) {
+    float voxel = uLevelMinCell[0].w;
+    float t = uNudge * voxel * 1.7320508 / max(dot(n, dir), 0.25);
+    vec4 acc = vec4(0.0);
+    occlusion = 0.0;
+    for (int i = 0; i < 512 && t < maxDistance && acc.a < 0.99; ++i) {
+        float diameter = max(2.0 * tanHalf * t, voxel);
+        vec4 s;
+        if (!sampleVoxels(apex + dir * t, diameter, dir, s)) break;
+        if (uStepMultiplier != 1.0 && s.a > 0.0) {
+            float a = 1.0 - pow(max(1.0 - s.a, 0.0), uStepMultiplier);
+            s = vec4(s.rgb * (a / s.a), a);
+        }
+        acc += (1.0 - acc.a) * s;
+        if (t < occlusionDistance) occlusion = acc.a;
+        t += uStepMultiplier * diameter;
+    }
+    return acc;
+}
+
+// A tangent frame around n (Frisvad's, with Duff et al.'s fix for n.z < 0).
+mat3 tangentFrame(vec3 n) {
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float b = n.x * n.y * a;
+    vec3 t = vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
+    vec3 bt = vec3(b, s + n.y * n.y * a, -n.y);
+    return mat3(t, bt, n);
+}

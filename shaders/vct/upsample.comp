@@ -1,0 +1,75 @@
+// Joint bilateral upsampling of the cone trace (traceScale < 1): each full-resolution pixel takes
+// the 2 x 2 traced pixels around it, weighted bilinearly and by how well each one's surface
+// matches its own: relative view depth (exp(-|dz| / (z * depthTolerance))) and normal
+// (max(n . n_q, 0)^8). Where no neighbour matches (thin objects, silhouettes) the best match
+// alone is used. The traced pixel q stands for the full pixel under its centre, as in trace.comp.
+#include "common/shared.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = kUnitNormal) uniform sampler2D uNormal;
+layout(binding = kUnitDepth) uniform sampler2D uDepth;
+layout(binding = 0) uniform sampler2D uLowIndirect;
+layout(binding = 3) uniform sampler2D uLowSpecular;
+layout(binding = 0, rgba16f) uniform writeonly image2D uIndirect;
+layout(binding = 1, rgba16f) uniform writeonly image2D uSpecular;
+
+uniform ivec2 uFullSize;
+uniform ivec2 uLowSize;
+uniform vec2 uToFull;   // full pixels per traced pixel
+uniform float uNear;
+uniform float uFar;
+
+const float kDepthTolerance = 0.05;
+
+float viewDepth(float d) {
+    float z = d * 2.0 - 1.0;
+    return 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
+}
+
+void main() {
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(px, uFullSize))) return;
+    float d = texelFetch(uDepth, px, 0).r;
+    if (d >= 1.0) {
+        imageStore(uIndirect, px, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(uSpecular, px, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    float z = viewDepth(d);
+    vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
+    vec2 f = (vec2(px) + 0.5) / uToFull - 0.5;
+    ivec2 base = ivec2(floor(f));
+    vec2 t = f - vec2(base);
+    vec3 indirect = vec3(0.0), specular = vec3(0.0);
+    float total = 0.0, best = -1.0;
+    vec3 bestIndirect = vec3(0.0), bestSpecular = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        ivec2 o = ivec2(i & 1, i >> 1);
+        ivec2 q = clamp(base + o, ivec2(0), uLowSize - 1);
+        ivec2 qp = min(ivec2((vec2(q) + 0.5) * uToFull), uFullSize - 1);
+        float dq = texelFetch(uDepth, qp, 0).r;
+        if (dq >= 1.0) continue;
+        float match = exp(-abs(viewDepth(dq) - z) / (z * kDepthTolerance)) *
+                      pow(max(dot(n, normalize(texelFetch(uNormal, qp, 0).xyz)), 0.0), 8.0);
+        float bilinear = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
+        float w = match * max(bilinear, 1e-3);
+        vec3 li = texelFetch(uLowIndirect, q, 0).rgb, ls = texelFetch(uLowSpecular, q, 0).rgb;
+        indirect += w * li;
+        specular += w * ls;
+        total += w;
+        if (match > best) {
+            best = match;
+            bestIndirect = li;
+            bestSpecular = ls;
+        }
+    }
+    if (total > 1e-4) {
+        indirect /= total;
+        specular /= total;
+    } else {
+        indirect = bestIndirect;
+        specular = bestSpecular;
+    }
+    imageStore(uIndirect, px, vec4(indirect, 1.0));
+    imageStore(uSpecular, px, vec4(specular, 1.0));
+}

@@ -1,0 +1,74 @@
+// Voxelization, fragment stage: one fragment is one voxel column of the projected triangle. The
+// fragment writes every voxel the triangle's depth crosses within its pixel (the depth slope is
+// at most ~1.4 voxels per pixel along the dominant axis, so one or two voxels, three at most),
+// which keeps sloped surfaces watertight. Values go in with a running average by atomic
+// compare-and-swap on RGBA8 packed in r32ui (seed 000 and 003): rgb the mean, a the count.
+// Albedo is the diffuse albedo (base colour times 1 - metallic); emission is divided by the
+// scene's largest emission so it fits 8 bits; normals are stored as n * 0.5 + 0.5.
+#include "common/shared.h"
+#include "vct/vct_shared.h"
+
+layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
+layout(binding = 0, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
+layout(binding = 1, r32ui) uniform coherent volatile uimage3D uNormalVox;
+layout(binding = 2, r32ui) uniform coherent volatile uimage3D uEmissionVox;
+
+uniform vec4 uBaseColor;
+uniform bool uHasTexture;
+uniform float uAlphaCutoff;  // < 0: opaque
+uniform float uMetallic;
+uniform vec3 uEmissive;
+uniform float uEmissionScale;  // 1 / the scene's largest emission component
+uniform int uResolution;
+uniform ivec3 uClipMin;        // voxels outside [uClipMin, uClipMax) are not written (clipmap slabs)
+uniform ivec3 uClipMax;
+uniform ivec3 uWrapOffset;     // clipmap: texel = (voxel + offset) mod resolution (toroidal addressing)
+
+in vec3 gGrid;
+in vec3 gNormal;
+in vec2 gUV;
+flat in vec4 gBox;
+flat in vec2 gDepthRange;
+flat in int gAxis;
+
+vec3 unswizzle(vec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s; }
+
+#define GI_RUNNING_AVERAGE(img, c, value)                                                    \
+    {                                                                                        \
+        uint expected = 0u;                                                                  \
+        uint desired = packUnorm4x8(vec4(value, 1.0 / kVCTMaxCount));                        \
+        for (int i = 0; i < kVCTAtomicTries; ++i) {                                         \
+            uint found = imageAtomicCompSwap(img, c, expected, desired);                     \
+            if (found == expected) break;                                                    \
+            expected = found;                                                                \
+            vec4 old = unpackUnorm4x8(found);                                                \
+            float count = round(old.a * kVCTMaxCount);                                       \
+            if (count >= kVCTMaxCount) break;                                                \
+            desired = packUnorm4x8(vec4((old.rgb * count + value) / (count + 1.0), (count + 1.0) / kVCTMaxCount)); \
+        }                                                                                    \
+    }
+
+void main() {
+    if (any(lessThan(gl_FragCoord.xy, gBox.xy)) || any(greaterThan(gl_FragCoord.xy, gBox.zw))) discard;
+    vec4 base = uBaseColor;
+    if (uHasTexture) base *= texture(uBaseColorTex, gUV);
+    if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
+
+    float slope = 0.5 * (abs(dFdx(gGrid.z)) + abs(dFdy(gGrid.z)));
+    float z0 = clamp(gGrid.z - slope, gDepthRange.x, gDepthRange.y);
+    float z1 = clamp(gGrid.z + slope, gDepthRange.x, gDepthRange.y);
+    int first = int(floor(z0)), last = min(int(floor(z1)), int(floor(z0)) + 2);
+
+    vec3 albedo = clamp(base.rgb * (1.0 - uMetallic), 0.0, 1.0);
+    vec3 n = normalize(gNormal) * 0.5 + 0.5;
+    vec3 e = clamp(uEmissive * uEmissionScale, 0.0, 1.0);
+    bool emissive = any(greaterThan(uEmissive, vec3(0.0)));
+    for (int z = first; z <= last; ++z) {
+        ivec3 c = ivec3(unswizzle(vec3(floor(gl_FragCoord.xy), float(z)), gAxis));
+        if (any(lessThan(c, uClipMin)) || any(greaterThanEqual(c, uClipMax))) continue;
+        c = (c + uWrapOffset) % uResolution;
+        GI_RUNNING_AVERAGE(uAlbedoVox, c, albedo)
+        GI_RUNNING_AVERAGE(uNormalVox, c, n)
+        if (emissive) GI_RUNNING_AVERAGE(uEmissionVox, c, e)
+    }
+}
