@@ -131,41 +131,8 @@ TEST(LPVCascades, FitSnapAndNest) {
     for (size_t k = 0; k < boxes.size(); ++k) EXPECT_EQ(moved[k].min, boxes[k].min);
 }
 
-// Two rooms side by side, sharing one thin wall at x = 0. A spot light lights room A (x < 0);
-// room B (x > 0) is closed, so in the reference it is dark.
-Scene twoRooms() {
-    Scene s;
-    MeshBuilder b(s);
-    int white = b.material("white", glm::vec3(0.8f), 1.0f);
-    b.quad(white, {-2, 0, 1}, {4, 0, 0}, {0, 0, -2});    // floor
-    b.quad(white, {-2, 2, -1}, {4, 0, 0}, {0, 0, 2});    // ceiling
-    b.quad(white, {-2, 0, -1}, {4, 0, 0}, {0, 2, 0});    // back
-    b.quad(white, {2, 0, 1}, {-4, 0, 0}, {0, 2, 0});     // front
-    b.quad(white, {-2, 0, 1}, {0, 0, -2}, {0, 2, 0});    // outer wall of A
-    b.quad(white, {2, 0, -1}, {0, 0, 2}, {0, 2, 0});     // outer wall of B
-    b.quad(white, {0, 0, -1}, {0, 0, 2}, {0, 2, 0});     // the shared thin wall
-    LightSettings spot;
-    spot.type = LightType::Spot;
-    spot.position = {-1.8f, 1.8f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(1.0f, -0.6f, 0.0f));
-    spot.intensity = 20.0f;
-    spot.innerConeDeg = 50.0f;
-    spot.outerConeDeg = 70.0f;
-    s.lights.push_back(spot);
-    s.finalize();
-    return s;
-}
-
-double meanIndirect(Renderer& r, const FrameSettings& fs) {
-    r.render(fs);
-    std::vector<float> px = r.readIndirectRadiance();
-    double sum = 0;
-    for (size_t i = 0; i < px.size(); i += 4) sum += 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
-    return sum / double(px.size() / 4);
-}
-
 TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
-    Scene scene = twoRooms();
+    Scene scene = test::twoRooms();
     Preset p;
     p.header.technique = TechniqueKind::LPV;
     p.lpv.gridResolution = 16;
@@ -178,13 +145,13 @@ TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
     fs.camera.target = {0.0f, 0.8f, 0.0f};
     fs.camera.fovY = 70.0f;
     fs.lpv.occlusion = false;
-    double leakOpen = meanIndirect(r, fs);
+    double leakOpen = test::meanIndirect(r, fs);
     fs.lpv.occlusion = true;
-    double leakBlocked = meanIndirect(r, fs);
+    double leakBlocked = test::meanIndirect(r, fs);
     // The lit room, for scale.
     fs.camera.eye = {-1.9f, 1.0f, 0.0f};
     fs.camera.target = {0.0f, 0.8f, 0.0f};
-    double litRoom = meanIndirect(r, fs);
+    double litRoom = test::meanIndirect(r, fs);
     std::printf("indirect in the dark room: %.5f without, %.5f with the geometry volume; lit room %.5f\n", leakOpen,
                 leakBlocked, litRoom);
     EXPECT_GT(litRoom, 5.0 * leakBlocked);

@@ -1,6 +1,7 @@
 #include "test_util.h"
 
 #include "gi/gl/debug.h"
+#include "gi/scene/mesh_builder.h"
 
 #include <array>
 #include <cstdio>
@@ -23,6 +24,38 @@ std::filesystem::path tempDir() {
     std::filesystem::create_directories(dir);
     return dir;
 }
+
+Scene twoRooms() {
+    Scene s;
+    MeshBuilder b(s);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    b.quad(white, {-2, 0, 1}, {4, 0, 0}, {0, 0, -2});    // floor
+    b.quad(white, {-2, 2, -1}, {4, 0, 0}, {0, 0, 2});    // ceiling
+    b.quad(white, {-2, 0, -1}, {4, 0, 0}, {0, 2, 0});    // back
+    b.quad(white, {2, 0, 1}, {-4, 0, 0}, {0, 2, 0});     // front
+    b.quad(white, {-2, 0, 1}, {0, 0, -2}, {0, 2, 0});    // outer wall of A
+    b.quad(white, {2, 0, -1}, {0, 0, 2}, {0, 2, 0});     // outer wall of B
+    b.quad(white, {0, 0, -1}, {0, 0, 2}, {0, 2, 0});     // the shared thin wall
+    LightSettings spot;
+    spot.type = LightType::Spot;
+    spot.position = {-1.8f, 1.8f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(1.0f, -0.6f, 0.0f));
+    spot.intensity = 20.0f;
+    spot.innerConeDeg = 50.0f;
+    spot.outerConeDeg = 70.0f;
+    s.lights.push_back(spot);
+    s.finalize();
+    return s;
+}
+
+double meanIndirect(Renderer& r, const FrameSettings& fs) {
+    r.render(fs);
+    std::vector<float> px = r.readIndirectRadiance();
+    double sum = 0;
+    for (size_t i = 0; i < px.size(); i += 4) sum += 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
+    return sum / double(px.size() / 4);
+}
+
 
 CommandResult runCommand(const std::string& command) {
     CommandResult r;

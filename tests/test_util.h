@@ -2,6 +2,8 @@
 #pragma once
 
 #include "gi/platform/egl_context.h"
+#include "gi/render/renderer.h"
+#include "gi/scene/scene.h"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,13 @@ struct CommandResult {
     std::string output;  // stdout and stderr together
 };
 CommandResult runCommand(const std::string& command);
+
+// Two rooms side by side, sharing one thin wall at x = 0. A spot light lights room A (x < 0);
+// room B (x > 0) is closed, so in the reference it is dark.
+Scene twoRooms();
+// Mean luminance of the indirect light the lighting pass adds (Renderer::readIndirectRadiance)
+// after rendering fs.
+double meanIndirect(Renderer& r, const FrameSettings& fs);
 
 // A GL test fails on any GL debug error raised during it.
 class GLTest : public ::testing::Test {

@@ -106,6 +106,11 @@ public:
     std::vector<PassStats> passStats() const;
     size_t memoryBytes() const;
     gl::GpuTimer& timer() { return mTimer; }
+    // The technique of the last frame (null for none), for tests and the editor's previewers.
+    const Technique* technique() const { return mTechnique.get(); }
+    std::vector<Technique::VolumeMemory> techniqueVolumes() const {
+        return mTechnique ? mTechnique->volumeMemory() : std::vector<Technique::VolumeMemory>{};
+    }
 
     std::vector<uint8_t> readLDR() const;  // RGBA8, bottom row first
     std::vector<float> readHDR() const;    // RGBA32F, bottom row first

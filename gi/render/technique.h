@@ -45,6 +45,13 @@ public:
     // Memory held by the pass of that timer name (0 for passes it does not know).
     virtual size_t passMemory(const std::string& pass) const = 0;
     virtual size_t memoryBytes() const = 0;
+    // Memory of each named volume or buffer it holds (stats.json "volumes"); may be empty.
+    struct VolumeMemory {
+        std::string name;
+        std::string format;  // e.g. "64^3 RGBA16F, 7 mips"
+        size_t bytes = 0;
+    };
+    virtual std::vector<VolumeMemory> volumeMemory() const { return {}; }
     virtual bool reloadShaders(std::string& log) = 0;
 };
 

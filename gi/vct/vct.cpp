@@ -102,7 +102,12 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     const VCTSettings& s = fs.vct;
     int res = s.gridResolution, mips = vctMipCount(res);
     size_t perLevel = voxels(res) * kVoxelBytes + mipChain(8, res, mips);
+    if (s.bounceCount > 1) perLevel += 2 * voxels(res) * 8;  // bounced radiance of both sides
     size_t bytes = perLevel * size_t(levelCountOf(s));
+    if (s.traceScale < 1.0f) {
+        double scaled = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
+        bytes += size_t(scaled) * 16;  // the low-resolution trace targets
+    }
     if (anisotropicOn(s)) bytes += 6 * mipChain(8, res / 2, std::max(mips - 1, 1));
     if (shOn(s)) bytes += 3 * mipChain(8, res, mips);
     return bytes;
@@ -235,7 +240,7 @@ void VCT::updateGrids(const FrameContext& ctx) {
     for (size_t k = 0; k < mLevels.size(); ++k) {
         Level& l = mLevels[k];
         const VoxelBox& nb = boxes[k];
-        bool sameLattice = l.voxelized && !newScene && l.box.cellSize == nb.cellSize;
+        bool sameLattice = l.voxelized && !newScene && l.box.cellSize == nb.cellSize && !ctx.settings.vct.revoxelizeEveryFrame;
         mVoxelizedVoxels[k] = 0;
         if (sameLattice && l.box.min == nb.min && l.box.origin == nb.origin) continue;
         glm::ivec3 delta = nb.origin - l.box.origin;
@@ -508,6 +513,31 @@ size_t VCT::passMemory(const std::string& pass) const {
     if (pass == "vct.upsample") return mLowIndirect.bytes() + mLowSpecular.bytes();
     if (pass == "vct.mip") return mRadianceBytes;
     return 0;
+}
+
+std::vector<Technique::VolumeMemory> VCT::volumeMemory() const {
+    std::vector<VolumeMemory> v;
+    std::string r = std::to_string(mResolution) + "^3 ";
+    std::string mips = ", " + std::to_string(mMipCount) + " mips";
+    for (size_t k = 0; k < mLevels.size(); ++k) {
+        const Level& l = mLevels[k];
+        std::string s = mLevels.size() > 1 ? "[" + std::to_string(k) + "]" : "";
+        v.push_back({"albedo" + s, r + "R32UI (RGBA8 + count)", l.albedo.bytes()});
+        v.push_back({"normal" + s, r + "R32UI (RGBA8 + count)", l.normal.bytes()});
+        v.push_back({"emission" + s, r + "R32UI (RGBA8 + count)", l.emission.bytes()});
+        v.push_back({"exitRadiance" + s, r + "RGBA16F x 2 (front, back)", l.exitFront.bytes() + l.exitBack.bytes()});
+        if (l.bouncedFront.bytes())
+            v.push_back({"bouncedRadiance" + s, r + "RGBA16F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});
+        v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});
+    }
+    if (mAnisotropic)
+        v.push_back({"anisotropic", std::to_string(mResolution / 2) + "^3 RGBA16F x 6, " + std::to_string(mMipCount - 1) + " mips",
+                     6 * mAniso[0].bytes()});
+    if (mSHVoxels) v.push_back({"sh", r + "RGBA16F x 3" + mips, 3 * mSH[0].bytes()});
+    if (mLowIndirect.bytes())
+        v.push_back({"traceTargets", std::to_string(mLowIndirect.width()) + "x" + std::to_string(mLowIndirect.height()) + " RGBA16F x 2",
+                     mLowIndirect.bytes() + mLowSpecular.bytes()});
+    return v;
 }
 
 size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndirect.bytes() + mLowSpecular.bytes(); }

@@ -91,6 +91,7 @@ public:
     std::vector<DebugView> debugViews() const override;
     size_t passMemory(const std::string& pass) const override;
     size_t memoryBytes() const override;
+    std::vector<VolumeMemory> volumeMemory() const override;
     bool reloadShaders(std::string& log) override;
 
     struct Level {

@@ -39,7 +39,7 @@ struct VCTSettings {
     int coneCount = 16;               // custom set: number of diffuse cones
     float coneAperture = 60.0f;       // full aperture of every diffuse cone, degrees
     ConeWeighting coneWeighting = ConeWeighting::Cosine;  // cone weights before normalisation
-    float nudge = 2.0f;               // start offset in voxel diagonals over n.w (seed 000 eq. 3.4)
+    float nudge = 3.0f;               // start offset in voxel diagonals over n.w (seed 000 eq. 3.4)
     float stepMultiplier = 1.0f;      // step = multiplier * cone diameter; below 1 oversamples
     float maxDistance = 0.0f;         // cone length in world units; 0 = the grid's diagonal
     int bounceCount = 1;              // 1: direct light in the voxels; 2 or 3 re-inject traced indirect light
@@ -52,6 +52,7 @@ struct VCTSettings {
     float vaoStrength = 1.0f;         // 0: no effect, 1: indirect light times the cones' visibility
     float vaoDistance = 0.0f;         // occluders farther than this do not occlude; 0 = maxDistance
     float intensity = 1.0f;           // scale of the indirect light
+    bool revoxelizeEveryFrame = false;  // voxelize every frame (dynamic geometry) instead of when the grid moves
     float traceScale = 0.5f;          // cones are traced per pixel of an image this much smaller per side, then upsampled
 
     template <class V>
@@ -77,6 +78,7 @@ struct VCTSettings {
         v(vaoStrength, {"vaoStrength", "Strength of the voxel ambient occlusion", "", 0, 1});
         v(vaoDistance, {"vaoDistance", "Occlusion range of the VAO (0: maxDistance)", "m", 0, 1e5});
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
+        v(revoxelizeEveryFrame, {"revoxelizeEveryFrame", "Voxelize every frame (dynamic geometry, benchmarks) instead of only when the grid moves", ""});
         v(traceScale, {"traceScale", "Resolution scale of the cone trace (depth- and normal-aware upsampling below 1)", "", 0.125, 1,
                        Cost::Reallocate, 0.125});
     }

@@ -1,0 +1,396 @@
+// Voxel cone tracing: cone set geometry, SH hemisphere projection, mip consistency, the clipmap's
+// toroidal update against a full voxelization, the nudge on a flat floor, the two-room leak, and
+// the memory budget.
+#include "common/sh.h"
+#include "gi/preset/preset.h"
+#include "gi/render/renderer.h"
+#include "gi/scene/mesh_builder.h"
+#include "gi/vct/cone_set.h"
+#include "gi/vct/vct.h"
+#include "gi/util/error.h"
+#include "test_util.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <cmath>
+
+namespace gi {
+namespace {
+
+double angleDeg(glm::vec3 a, glm::vec3 b) { return glm::degrees(std::acos(std::clamp(double(glm::dot(a, b)), -1.0, 1.0))); }
+
+void expectNormalised(const ConeSet& set) {
+    double sum = 0;
+    for (const Cone& c : set.cones) {
+        EXPECT_NEAR(glm::length(c.direction), 1.0f, 1e-5f);
+        EXPECT_GT(c.direction.z, 0.0f) << "every cone points into the hemisphere";
+        EXPECT_GT(c.weight, 0.0f);
+        sum += c.weight;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-5);
+}
+
+TEST(VCTConeSet, SixIsSeed003sSet) {
+    ConeSet set = makeConeSet(ConeSetKind::Six, 0, 60.0f, ConeWeighting::Cosine);
+    ASSERT_EQ(set.cones.size(), 6u);
+    expectNormalised(set);
+    EXPECT_NEAR(set.cones[0].direction.z, 1.0f, 1e-6f);
+    for (int i = 1; i < 6; ++i) {
+        EXPECT_NEAR(angleDeg(set.cones[size_t(i)].direction, {0, 0, 1}), 60.0, 1e-3);
+        // Neighbours on the ring are 72 degrees apart in azimuth.
+        glm::vec3 a = set.cones[size_t(i)].direction, b = set.cones[size_t(i % 5 + 1)].direction;
+        double phi = glm::degrees(std::acos(glm::dot(glm::normalize(glm::vec2(a)), glm::normalize(glm::vec2(b)))));
+        EXPECT_NEAR(phi, 72.0, 1e-2);
+    }
+    // Seed 003's weights are cos(theta): 1 and 0.5, so 1/3.5 and 0.5/3.5 once normalised.
+    EXPECT_NEAR(set.cones[0].weight, 1.0 / 3.5, 1e-6);
+    EXPECT_NEAR(set.cones[3].weight, 0.5 / 3.5, 1e-6);
+}
+
+TEST(VCTConeSet, NineIsSeed000sSet) {
+    ConeSet set = makeConeSet(ConeSetKind::Nine, 0, 60.0f, ConeWeighting::Cosine);
+    ASSERT_EQ(set.cones.size(), 9u);
+    expectNormalised(set);
+    int corners = 0, sides = 0;
+    for (size_t i = 1; i < 9; ++i) {
+        double a = angleDeg(set.cones[i].direction, {0, 0, 1});
+        if (std::abs(a - 54.7356) < 1e-3) ++corners;
+        if (std::abs(a - 45.0) < 1e-3) ++sides;
+    }
+    EXPECT_EQ(corners, 4) << "the box's top corners";
+    EXPECT_EQ(sides, 4) << "the box's sides";
+}
+
+TEST(VCTConeSet, CustomCoversTheHemisphereEvenly) {
+    for (int n : {1, 4, 16, 32}) {
+        ConeSet set = makeConeSet(ConeSetKind::Custom, n, 30.0f, ConeWeighting::Equal);
+        ASSERT_EQ(int(set.cones.size()), n);
+        expectNormalised(set);
+        // Spherical Fibonacci: the mean direction is close to the normal (no lopsided set).
+        glm::vec3 mean(0.0f);
+        for (const Cone& c : set.cones) mean += c.direction;
+        mean /= float(n);
+        if (n >= 16) EXPECT_LT(std::hypot(mean.x, mean.y), 0.05f) << n;
+    }
+}
+
+// For radiance L(w) = 1 the sets return E / pi = 1 exactly (weights sum to one); for the linear
+// L(w) = w.z, the exact E / pi is the integral of cos^2 over the hemisphere / pi = 2/3; and a
+// radiance varying along the surface, L(w) = w.x, gives 0 by symmetry.
+TEST(VCTConeSet, IrradianceOfSimpleRadianceFields) {
+    struct Case { ConeSetKind kind; int count; double tolerance; };
+    for (Case c : {Case{ConeSetKind::Six, 0, 0.04}, Case{ConeSetKind::Nine, 0, 0.06}, Case{ConeSetKind::Custom, 32, 0.03}}) {
+        ConeSet set = makeConeSet(c.kind, c.count, 60.0f, ConeWeighting::Cosine);
+        double one = coneSetIrradianceOverPi(set, [](glm::vec3) { return 1.0; });
+        double linear = coneSetIrradianceOverPi(set, [](glm::vec3 w) { return double(w.z); });
+        double side = coneSetIrradianceOverPi(set, [](glm::vec3 w) { return double(w.x); });
+        std::printf("%s: E/pi for L=1 %.4f, L=cos %.4f (exact 0.6667), L=x %.4f\n", enumName(c.kind), one, linear, side);
+        EXPECT_NEAR(one, 1.0, 1e-6);
+        EXPECT_NEAR(linear / (2.0 / 3.0), 1.0, c.tolerance);
+        EXPECT_NEAR(side, 0.0, c.kind == ConeSetKind::Custom ? 0.01 : 1e-5);
+    }
+}
+
+TEST(VCTConeSet, HemisphereCoverage) {
+    double six = coneSetCoverage(makeConeSet(ConeSetKind::Six, 0, 60.0f, ConeWeighting::Cosine));
+    double nine = coneSetCoverage(makeConeSet(ConeSetKind::Nine, 0, 60.0f, ConeWeighting::Cosine));
+    double narrow = coneSetCoverage(makeConeSet(ConeSetKind::Six, 0, 20.0f, ConeWeighting::Cosine));
+    double one = coneSetCoverage(makeConeSet(ConeSetKind::Custom, 1, 60.0f, ConeWeighting::Cosine));
+    std::printf("hemisphere covered: six %.3f, nine %.3f, six at 20 deg %.3f, one cone %.3f\n", six, nine, narrow, one);
+    // One 60-degree cone covers 1 - cos(30 deg) of the hemisphere exactly.
+    EXPECT_NEAR(one, 1.0 - std::cos(glm::radians(30.0)), 0.01);
+    // The nine cones overlap more (four sit 45 degrees off the normal), so they cover no more
+    // than the six; both leave the grazing band uncovered.
+    EXPECT_GT(six, 0.75);
+    EXPECT_GT(nine, 0.75);
+    EXPECT_LT(narrow, 0.25);
+}
+
+TEST(VCTSH, HemisphereProjection) {
+    glm::vec3 n = glm::normalize(glm::vec3(0.2f, 0.9f, -0.3f));
+    glm::vec4 h = sh::shHemisphere(n);
+    // Projection of the indicator of the hemisphere around n, by numerical integration.
+    const int steps = 400;
+    glm::dvec4 projected(0.0);
+    for (int i = 0; i < steps; ++i)
+        for (int j = 0; j < 2 * steps; ++j) {
+            double z = -1.0 + 2.0 * (i + 0.5) / steps, phi = glm::pi<double>() * (j + 0.5) / steps;
+            double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+            glm::vec3 w(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+            if (glm::dot(w, n) > 0.0f) projected += glm::dvec4(sh::shBasis(w));
+        }
+    projected *= 4.0 * glm::pi<double>() / (2.0 * steps * steps);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(projected[k], h[k], 2e-3) << k;
+    EXPECT_NEAR(sh::shEval(h, n), 1.25f, 1e-4f);
+}
+
+class VCTGL : public test::GLTest {};
+
+FrameSettings cornellFrame(const Scene& scene, int res) {
+    Preset p;
+    p.header.technique = TechniqueKind::VCT;
+    p.vct.gridResolution = res;
+    return frameSettings(p, scene, 64, 48);
+}
+
+const VCT& vctOf(const Renderer& r) {
+    const VCT* v = dynamic_cast<const VCT*>(r.technique());
+    if (!v) throw Error("the renderer holds no VCT");
+    return *v;
+}
+
+std::vector<float> readRGBA(const gl::Texture& t, int level) {
+    int n = std::max(t.width() >> level, 1);
+    std::vector<float> v(size_t(n) * n * n * 4);
+    glGetTextureImage(t.id(), level, GL_RGBA, GL_FLOAT, GLsizei(v.size() * 4), v.data());
+    return v;
+}
+
+std::vector<uint32_t> readPacked(const gl::Texture& t) {
+    std::vector<uint32_t> v(size_t(t.width()) * t.height() * t.depth());
+    glGetTextureImage(t.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(v.size() * 4), v.data());
+    return v;
+}
+
+// Every mip texel is the mean of its 8 children (isotropic), and every anisotropic texel is the
+// mean over 4 child pairs of front + (1 - front.a) * back along its direction.
+TEST_F(VCTGL, MipsAreConsistent) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = cornellFrame(scene, 32);
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    const VCT& v = vctOf(r);
+    const auto& radiance = v.levels()[0].radiance;
+    int res = v.resolution();
+    auto idx = [](int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; };
+    std::vector<float> fine = readRGBA(radiance, 0);
+    size_t occupied = 0;
+    for (size_t i = 3; i < fine.size(); i += 4) occupied += fine[i] > 0.5f;
+    EXPECT_GT(occupied, size_t(res * res * 4)) << "the cornell box's six walls are voxelized";
+    for (int level = 1; level < vctMipCount(res); ++level) {
+        std::vector<float> coarse = readRGBA(radiance, level);
+        int n = res >> level;
+        double worst = 0;
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    for (int c = 0; c < 4; ++c) {
+                        double mean = 0;
+                        for (int k = 0; k < 8; ++k) mean += fine[idx(2 * n, 2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2)) + c];
+                        mean /= 8.0;
+                        double e = std::abs(coarse[idx(n, x, y, z) + c] - mean) / std::max(1.0, std::abs(mean));
+                        worst = std::max(worst, e);
+                    }
+        EXPECT_LT(worst, 2e-3) << "mip " << level;  // fp16 storage
+        fine = coarse;
+    }
+    // Anisotropic level 0 from the base level, direction +X (index 0) and -Y (index 3).
+    std::vector<float> base = readRGBA(radiance, 0);
+    for (int d : {0, 3}) {
+        std::vector<float> aniso = readRGBA(v.anisotropicVolumes()[size_t(d)], 0);
+        int n = res / 2, axis = d / 2;
+        bool positive = d % 2 == 0;
+        double worst = 0;
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    glm::dvec4 sum(0.0);
+                    for (int k = 0; k < 8; ++k) {
+                        glm::ivec3 c(2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2));
+                        if (c[axis] % 2 == 1) continue;  // visit each pair from its lower child
+                        glm::ivec3 c2 = c;
+                        c2[axis] += 1;
+                        size_t a = idx(res, c.x, c.y, c.z), b = idx(res, c2.x, c2.y, c2.z);
+                        glm::dvec4 lo(base[a], base[a + 1], base[a + 2], base[a + 3]);
+                        glm::dvec4 hi(base[b], base[b + 1], base[b + 2], base[b + 3]);
+                        glm::dvec4 nearer = positive ? lo : hi, farther = positive ? hi : lo;
+                        sum += nearer + (1.0 - nearer.w) * farther;
+                    }
+                    for (int c = 0; c < 4; ++c)
+                        worst = std::max(worst, std::abs(aniso[idx(n, x, y, z) + size_t(c)] - 0.25 * sum[c]) /
+                                                    std::max(1.0, std::abs(0.25 * sum[c])));
+                }
+        EXPECT_LT(worst, 2e-3) << "anisotropic direction " << d;
+    }
+}
+
+// The grid is static: a second frame with the same scene and grid does not voxelize again.
+TEST_F(VCTGL, StaticGridIsVoxelizedOnce) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = cornellFrame(scene, 32);
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    r.render(fs);
+    EXPECT_EQ(vctOf(r).voxelizationCount(), 1);
+    fs.vct.levelExtent = 3.0f;  // a new grid placement
+    r.render(fs);
+    EXPECT_EQ(vctOf(r).voxelizationCount(), 2);
+}
+
+// Voxels of every level in logical order (toroidal addressing undone).
+std::vector<std::vector<uint32_t>> logicalAlbedo(const VCT& v) {
+    std::vector<std::vector<uint32_t>> out;
+    int n = v.resolution();
+    for (const auto& level : v.levels()) {
+        std::vector<uint32_t> physical = readPacked(level.albedo), logical(physical.size());
+        glm::ivec3 wrap = ((level.box.origin % n) + n) % n;
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    glm::ivec3 t = (glm::ivec3(x, y, z) + wrap) % n;
+                    logical[(size_t(z) * n + y) * n + x] = physical[(size_t(t.z) * n + t.y) * n + t.x];
+                }
+        out.push_back(std::move(logical));
+    }
+    return out;
+}
+
+TEST_F(VCTGL, ToroidalUpdateEqualsFullVoxelization) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = cornellFrame(scene, 32);
+    fs.vct.mode = VCTMode::Clipmap;
+    fs.vct.levelCount = 2;
+    fs.vct.levelExtent = 1.5f;
+    fs.camera.eye = {0.1f, 1.0f, 0.3f};
+    fs.camera.target = {0.1f, 1.0f, -1.0f};
+    Renderer moved;
+    moved.setScene(scene);
+    moved.render(fs);
+    // Move by a few voxels of the finest level along every axis (both signs).
+    float cell = 1.5f / 32.0f;
+    fs.camera.eye += glm::vec3(3.2f * cell, -2.1f * cell, 5.4f * cell);
+    fs.camera.target += glm::vec3(3.2f * cell, -2.1f * cell, 5.4f * cell);
+    moved.render(fs);
+    const VCT& partial = vctOf(moved);
+    size_t full = size_t(32) * 32 * 32;
+    ASSERT_GT(partial.voxelizedVoxels()[0], 0u) << "the finest level moved";
+    EXPECT_LT(partial.voxelizedVoxels()[0], full / 2) << "only the exposed slabs are voxelized";
+    Renderer fresh;
+    fresh.setScene(scene);
+    fresh.render(fs);
+    auto a = logicalAlbedo(partial), b = logicalAlbedo(vctOf(fresh));
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t k = 0; k < a.size(); ++k) {
+        EXPECT_EQ(partial.levels()[k].box.origin, vctOf(fresh).levels()[k].box.origin);
+        size_t occupancyDiffers = 0, colourDiffers = 0, occupied = 0;
+        for (size_t i = 0; i < a[k].size(); ++i) {
+            bool oa = (a[k][i] >> 24) != 0, ob = (b[k][i] >> 24) != 0;
+            occupied += ob;
+            if (oa != ob) ++occupancyDiffers;
+            else if (oa)
+                for (int c = 0; c < 3; ++c)
+                    if (std::abs(int((a[k][i] >> (8 * c)) & 255u) - int((b[k][i] >> (8 * c)) & 255u)) > 2) {
+                        ++colourDiffers;
+                        break;
+                    }
+        }
+        std::printf("level %zu: %zu occupied voxels, %zu differ in occupancy, %zu in colour\n", k, occupied, occupancyDiffers,
+                    colourDiffers);
+        EXPECT_GT(occupied, 100u);
+        EXPECT_EQ(occupancyDiffers, 0u) << "level " << k;
+        EXPECT_EQ(colourDiffers, 0u) << "level " << k;
+    }
+}
+
+// A floor lit only by a large emissive panel above it: without a nudge the cones start inside
+// the floor's own voxels and are blocked by them; with the nudge they reach the panel and the
+// floor receives about L_e times the view factor to the panel.
+TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
+    Scene scene;
+    MeshBuilder b(scene);
+    int floor = b.material("floor", glm::vec3(0.8f), 1.0f);
+    int panel = b.material("panel", glm::vec3(0.0f), 1.0f);
+    const float emission = 1.0f, side = 4.0f, height = 1.0f;
+    scene.materials[size_t(panel)].emissive = glm::vec3(emission);
+    b.quad(floor, {-side / 2, 0, side / 2}, {side, 0, 0}, {0, 0, -side});
+    b.quad(panel, {-side / 2, height, -side / 2}, {side, 0, 0}, {0, 0, side});
+    scene.finalize();
+    Preset p;
+    p.header.technique = TechniqueKind::VCT;
+    p.vct.gridResolution = 64;
+    p.vct.specularCone = false;
+    p.vct.traceScale = 1.0f;
+    p.vct.coneSet = ConeSetKind::Nine;
+    FrameSettings fs = frameSettings(p, scene, 32, 32);
+    fs.lights.clear();
+    fs.camera.eye = {0.0f, 0.6f, 0.0f};
+    fs.camera.target = {0.0f, 0.0f, 0.0f};
+    fs.camera.up = {0.0f, 0.0f, -1.0f};
+    fs.camera.fovY = 20.0f;
+    Renderer r;
+    r.setScene(scene);
+    // Point to parallel rectangle view factor, four corners meeting above the point (Howell).
+    double x = side / 2 / height;
+    double corner = (x / std::sqrt(1 + x * x) * std::atan(x / std::sqrt(1 + x * x))) * 2.0 / (2.0 * glm::pi<double>());
+    double expected = 0.8 * emission * 4.0 * corner;
+    std::vector<double> lit;
+    for (float nudge : {0.0f, 1.0f, 2.0f, 3.0f, 4.0f}) {
+        fs.vct.nudge = nudge;
+        lit.push_back(test::meanIndirect(r, fs));
+        std::printf("floor indirect at nudge %.0f: %.4f (%.0f %% of the analytic %.4f)\n", nudge, lit.back(),
+                    100.0 * lit.back() / expected, expected);
+    }
+    EXPECT_LT(lit[0], 0.1 * expected) << "without a nudge the floor's own voxels block its cones";
+    for (size_t i = 1; i < lit.size(); ++i) EXPECT_GT(lit[i], lit[i - 1]) << "a larger nudge frees more of the cones";
+    // As seed 000 reports, a nudge of 2 still self-occludes at the coarse mips; 4 reaches the panel.
+    EXPECT_NEAR(lit[4] / expected, 1.0, 0.2);
+}
+
+// The two-room scene: SH voxels radiate from the lit side only, so less light reaches the closed
+// room than with isotropic voxels (which glow on both sides of the thin wall). What remains
+// comes through the coarse mips, whose texels straddle the wall and average the lit room's floor
+// and ceiling into the closed room's cones: it is still about the size of the lit room's own
+// indirect light (printed; the closing note of issue 5 reports it as a known weakness).
+TEST_F(VCTGL, TwoRoomLeak) {
+    Scene scene = test::twoRooms();
+    Preset p;
+    p.header.technique = TechniqueKind::VCT;
+    p.vct.gridResolution = 64;
+    p.vct.specularCone = false;
+    FrameSettings fs = frameSettings(p, scene, 96, 64);
+    Renderer r;
+    r.setScene(scene);
+    fs.camera.eye = {1.9f, 1.0f, 0.0f};
+    fs.camera.target = {0.0f, 0.8f, 0.0f};
+    fs.camera.fovY = 70.0f;
+    double leakIsotropic = test::meanIndirect(r, fs);
+    fs.vct.sh = true;
+    double leakSH = test::meanIndirect(r, fs);
+    // The lit room, looking away from the shared wall (its surfaces there are lit indirectly).
+    fs.camera.eye = {-0.1f, 1.0f, 0.0f};
+    fs.camera.target = {-2.0f, 0.8f, 0.0f};
+    double litRoom = test::meanIndirect(r, fs);
+    std::printf("indirect in the dark room: isotropic %.5f, SH %.5f; lit room (SH) %.5f\n", leakIsotropic, leakSH, litRoom);
+    EXPECT_GT(litRoom, 0.0);
+    EXPECT_LT(leakSH, 0.5 * leakIsotropic) << "SH voxels should cut the leak at least in half";
+}
+
+TEST(VCTBudget, HugeGridsAreRefusedBeforeAllocation) {
+    Scene scene = makeBuiltinScene("cornell");
+    Preset p;
+    p.header.technique = TechniqueKind::VCT;
+    p.vct.gridResolution = 256;
+    p.vct.mode = VCTMode::Clipmap;
+    p.vct.levelCount = 6;
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    try {
+        Renderer::checkBudget(fs, scene);
+        FAIL() << "expected the budget to refuse " << VCT::estimateBytes(fs) / (1 << 20) << " MiB";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("vct"), std::string::npos) << e.what();
+    }
+    p.vct.levelCount = 1;
+    EXPECT_NO_THROW(Renderer::checkBudget(frameSettings(p, scene, 64, 48), scene));
+    // Out-of-range settings name the key.
+    try {
+        applySetting(p, "vct.gridResolution=4096");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("gridResolution"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace gi
