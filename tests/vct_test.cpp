@@ -392,5 +392,29 @@ TEST(VCTBudget, HugeGridsAreRefusedBeforeAllocation) {
     }
 }
 
+// VAO: at strength 0 it changes nothing; at strength 1 it darkens the indirect light (the
+// cornell box's corners and the blocks' feet occlude the cones), and a shorter occlusion range
+// darkens less.
+TEST_F(VCTGL, VAOScalesTheIndirectLightByTheConesVisibility) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = cornellFrame(scene, 32);
+    Renderer r;
+    r.setScene(scene);
+    double off = test::meanIndirect(r, fs);
+    fs.vct.vao = true;
+    fs.vct.vaoStrength = 0.0f;
+    double zero = test::meanIndirect(r, fs);
+    fs.vct.vaoStrength = 1.0f;
+    double full = test::meanIndirect(r, fs);
+    fs.vct.vaoDistance = 0.6f;  // the cones start 0.33 m out (nudge 3 voxel diagonals of 0.11 m)
+    double near = test::meanIndirect(r, fs);
+    std::printf("mean indirect: VAO off %.5f, strength 0 %.5f, strength 1 %.5f, strength 1 within 0.6 m %.5f\n", off, zero, full,
+                near);
+    EXPECT_NEAR(zero, off, 1e-6 + 1e-4 * off);
+    EXPECT_LT(full, 0.9 * off);
+    EXPECT_GT(near, full);
+    EXPECT_LT(near, off);
+}
+
 }  // namespace
 }  // namespace gi
