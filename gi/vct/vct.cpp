@@ -87,7 +87,8 @@ VCT::VCT()
       mInjectProg("vct.inject", {{GL_COMPUTE_SHADER, "vct/inject.comp"}}),
       mResolveProg("vct.resolve", {{GL_COMPUTE_SHADER, "vct/resolve.comp"}}),
       mMipProg("vct.mip", {{GL_COMPUTE_SHADER, "vct/mip.comp"}}),
-      mUpsampleProg("vct.upsample", {{GL_COMPUTE_SHADER, "vct/upsample.comp"}}) {
+      mUpsampleProg("vct.upsample", {{GL_COMPUTE_SHADER, "vct/upsample.comp"}}),
+      mCompactProg("vct.compact", {{GL_COMPUTE_SHADER, "vct/compact.comp"}}) {
     mEmptyFBO = gl::createFramebuffer();
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
@@ -102,7 +103,7 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     const VCTSettings& s = fs.vct;
     int res = s.gridResolution, mips = vctMipCount(res);
     size_t perLevel = voxels(res) * kVoxelBytes + mipChain(8, res, mips);
-    if (s.bounceCount > 1) perLevel += 2 * voxels(res) * 8;  // bounced radiance of both sides
+    if (s.bounceCount > 1) perLevel += 2 * voxels(res) * 8 + voxels(res) * 4;  // bounced radiance, occupied list
     size_t bytes = perLevel * size_t(levelCountOf(s));
     if (s.traceScale < 1.0f) {
         double scaled = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
@@ -405,8 +406,23 @@ void VCT::bounce(const FrameContext& ctx) {
         if (l.bouncedFront.width() != mResolution) {
             l.bouncedFront = gl::Texture::create3D(GL_RGBA16F, mResolution, mResolution, mResolution);
             l.bouncedBack = gl::Texture::create3D(GL_RGBA16F, mResolution, mResolution, mResolution);
-            mVoxelBytes += l.bouncedFront.bytes() * 2;
+            l.occupiedList = gl::createBuffer(voxels(mResolution) * 4, nullptr, 0);
+            l.occupiedDispatch = gl::createBuffer(16, nullptr, GL_DYNAMIC_STORAGE_BIT);
+            mVoxelBytes += l.bouncedFront.bytes() * 2 + voxels(mResolution) * 4;
         }
+    // The occupied voxels of each level, listed once per frame (clipmap slabs change them).
+    mCompactProg.use();
+    for (Level& l : mLevels) {
+        const GLuint start[4] = {0, 1, 1, 0};
+        glNamedBufferSubData(l.occupiedDispatch.id(), 0, 16, start);
+        setGridUniforms(mCompactProg, l);
+        glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l.occupiedDispatch.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, l.occupiedList.id());
+        GLuint g = groups(mResolution, 4);
+        glDispatchCompute(g, g, g);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     for (int b = 1; b < s.bounceCount; ++b) {
         mBounceProg.use();
         setTraceUniforms(mBounceProg, s);
@@ -421,9 +437,12 @@ void VCT::bounce(const FrameContext& ctx) {
             glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(5, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glBindImageTexture(6, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-            GLuint g = groups(mResolution, 4);
-            glDispatchCompute(g, g, g);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l.occupiedDispatch.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, l.occupiedList.id());
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, l.occupiedDispatch.id());
+            glDispatchComputeIndirect(0);
         }
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
         for (Level& l : mLevels) resolve(l, true);
@@ -544,8 +563,8 @@ size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndi
 
 bool VCT::reloadShaders(std::string& log) {
     bool ok = true;
-    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mBounceProg,
-                           &mTraceProg})
+    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg,
+                           &mBounceProg, &mTraceProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

@@ -15,7 +15,8 @@
 //      side leaves (albedo * E / pi) plus emission. resolve.comp writes the traced volume:
 //      isotropic premultiplied RGBA16F (both sides summed, alpha = opacity) or, with `sh`, 2-band
 //      SH per colour with each side a hemisphere of radiance around its normal.
-//   3. Bounces [vct.bounce], bounceCount - 1 times: every occupied voxel traces the diffuse cone
+//   3. Bounces [vct.bounce], bounceCount - 1 times: every occupied voxel (listed first by
+//      compact.comp, so the traces run on full invocation groups) traces the diffuse cone
 //      set on both sides through the current mips and adds albedo * E / pi (seed 000's
 //      re-injection of the first traced indirect light), then resolve and mips again.
 //   4. Mips [vct.mip]: a box filter of premultiplied RGBA (or SH); with `anisotropic`, six
@@ -98,6 +99,7 @@ public:
         gl::Texture albedo, normal, emission;   // r32ui running averages
         gl::Texture exitFront, exitBack;        // RGBA16F radiance each side leaves
         gl::Texture bouncedFront, bouncedBack;  // direct + gathered light after a bounce (bounceCount > 1)
+        gl::Buffer occupiedList, occupiedDispatch;  // compact.comp's voxel list and indirect dispatch
         gl::Texture radiance;                   // RGBA16F premultiplied radiance + opacity, mips
         VoxelBox box;
         bool voxelized = false;
@@ -115,6 +117,7 @@ private:
     gl::Program mVoxelizeProg, mClearProg, mInjectProg, mResolveProg, mMipProg, mUpsampleProg;
     gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
     gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
+    gl::Program mCompactProg;
     std::vector<Level> mLevels;
     std::array<gl::Texture, 6> mAniso;
     std::array<gl::Texture, 3> mSH;

@@ -5,7 +5,9 @@
 // resolve.comp and the mip pass then rebuild the traced volumes.
 #include "vct/trace.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
+layout(std430, binding = 1) readonly buffer Voxels { uint voxels[]; };  // compact.comp's list
 layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
 layout(binding = 3, rgba16f) uniform readonly image3D uDirectFront;  // inject.comp's result
@@ -29,11 +31,11 @@ vec3 hemisphere(vec3 p, vec3 n) {
 }
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (!insideGrid(v)) return;
+    if (gl_GlobalInvocationID.x >= count) return;
+    uint e = voxels[gl_GlobalInvocationID.x];
+    ivec3 v = ivec3(e & 1023u, (e >> 10) & 1023u, e >> 20);
     ivec3 t = texelOf(v);
     uint a = imageLoad(uAlbedoVox, t).r;
-    if (!occupied(a)) return;
     vec3 albedo = unpackVoxel(a).rgb;
     vec3 nn = unpackVoxel(imageLoad(uNormalVox, t).r).xyz * 2.0 - 1.0;
     vec3 n = length(nn) > 1e-3 ? normalize(nn) : vec3(0.0, 1.0, 0.0);
