@@ -273,11 +273,8 @@ void VCT::inject(const FrameContext& ctx) {
     mInjectProg.set("uEmissionRange", mEmissionRange);
     for (Level& l : mLevels) {
         setGridUniforms(mInjectProg, l);
-        glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        bindVoxelImages(l, GL_READ_WRITE);
         glBindImageTexture(2, l.emission.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
-        glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
         size_t first = 0;
         do {
             int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
@@ -312,6 +309,14 @@ void VCT::inject(const FrameContext& ctx) {
         } while (first < lights.size());
     }
     for (int u = 0; u < 2 * vct::kVCTMaxLights; ++u) glBindSampler(GLuint(vct::kVCTUnitShadow2D + u), 0);
+}
+
+void VCT::bindVoxelImages(const Level& l, GLenum exitAccess) const {
+    // The binding points every VCT pass shares: albedo 0, normal 1, the two sides' radiance 3, 4.
+    glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, exitAccess, GL_RGBA16F);
+    glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, exitAccess, GL_RGBA16F);
 }
 
 void VCT::resolve(Level& level, bool bounced) {
@@ -431,10 +436,7 @@ void VCT::bounce(const FrameContext& ctx) {
         bindRadiance();
         for (Level& l : mLevels) {
             setGridUniforms(mBounceProg, l);
-            glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-            glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-            glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-            glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            bindVoxelImages(l, GL_READ_ONLY);
             glBindImageTexture(5, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glBindImageTexture(6, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l.occupiedDispatch.id());

@@ -138,6 +138,7 @@ private:
     void voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax);
     void updateGrids(const FrameContext& ctx);
     void inject(const FrameContext& ctx);
+    void bindVoxelImages(const Level& level, GLenum exitAccess) const;
     void resolve(Level& level, bool bounced);
     void buildMips();
     void bounce(const FrameContext& ctx);
