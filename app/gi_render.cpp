@@ -10,6 +10,8 @@
 #include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
+#include "gi/scene/camera.h"
+#include "gi/vct/vct_views.h"
 
 #include <CLI/CLI.hpp>
 
@@ -136,6 +138,10 @@ int run(int argc, char** argv) {
         passes.push_back({{"name", p.name}, {"gpuMs", p.gpuMs}, {"memoryBytes", p.memoryBytes}});
         total += p.gpuMs;
     }
+    // Each volume the technique holds (name, format, bytes): the per-volume memory.
+    gi::json volumes = gi::json::array();
+    for (const auto& v : renderer.techniqueVolumes())
+        volumes.push_back({{"name", v.name}, {"format", v.format}, {"bytes", v.bytes}});
     gi::json stats = {{"input", input},
                       {"width", width},
                       {"height", height},
@@ -144,6 +150,7 @@ int run(int argc, char** argv) {
                       {"passes", passes},
                       {"gpuMsTotal", total},
                       {"memoryBytes", renderer.memoryBytes()},
+                      {"volumes", volumes},
                       {"scene", {{"name", scene.name}, {"triangles", scene.triangleCount()}, {"warnings", scene.warnings}}},
                       {"settings", gi::presetToJson(preset)}};
     if (views) {
@@ -155,6 +162,17 @@ int run(int argc, char** argv) {
             w = std::max(1, int(float(w) * scale));
             h = std::max(1, int(float(h) * scale));
             gi::writePNG(out / "views" / (v.name + ".png"), w, h, renderer.renderViewImage(v, w, h));
+        }
+        if (frame.technique == gi::TechniqueKind::VCT) {
+            // The voxels from the camera (the finest level holding its target): albedo, and the radiance the cones trace.
+            gi::VoxelView voxels;
+            gi::VoxelViewParams vp;
+            vp.viewProj = gi::projectionMatrix(frame.camera, float(width) / float(height)) * gi::viewMatrix(frame.camera);
+            std::vector<gi::VoxelGridView> grids = gi::voxelGrids(renderer.debugViews(), frame, scene.bounds);
+            vp.level = gi::finestLevelHolding(grids, frame.camera.target);
+            gi::writePNG(out / "views" / "vct.voxels.png", width, height, voxels.renderImage(grids, vp, width, height));
+            vp.source = gi::VoxelViewSource::Radiance;
+            gi::writePNG(out / "views" / "vct.voxels.radiance.png", width, height, voxels.renderImage(grids, vp, width, height));
         }
     }
     if (reference || score) {

@@ -70,7 +70,9 @@ TEST(VCTConeSet, CustomCoversTheHemisphereEvenly) {
         glm::vec3 mean(0.0f);
         for (const Cone& c : set.cones) mean += c.direction;
         mean /= float(n);
-        if (n >= 16) EXPECT_LT(std::hypot(mean.x, mean.y), 0.05f) << n;
+        if (n >= 16) {
+            EXPECT_LT(std::hypot(mean.x, mean.y), 0.05f) << n;
+        }
     }
 }
 

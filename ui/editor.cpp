@@ -1,11 +1,14 @@
 #include "ui/editor.h"
 
 #include "gi/lpv/lpv.h"
+#include "gi/scene/camera.h"
 
+#include "gi/util/error.h"
 #include "gi/util/paths.h"
 #include "ui/settings_panel.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 #include <imgui.h>
 #include <imgui_internal.h>  // ButtonEx, for a Load button that fires on press
 #include <imgui_stdlib.h>
@@ -13,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cfloat>
+#include <cmath>
 #include <type_traits>
 
 namespace fs = std::filesystem;
@@ -44,9 +48,37 @@ std::string lowercase(std::string s) {
 
 double mebibytes(size_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
+// Screen position of a world point for the overlays; false behind the eye.
+bool projectToScreen(const glm::mat4& viewProj, const glm::vec3& p, ImVec2 display, ImVec2& out) {
+    glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+    if (c.w <= 1e-4f) return false;
+    out = ImVec2((c.x / c.w * 0.5f + 0.5f) * display.x, (0.5f - c.y / c.w * 0.5f) * display.y);
+    return true;
+}
+
+const GLuint* viewTexture(const std::vector<DebugView>& views, const char* name) {
+    for (const DebugView& v : views)
+        if (v.name == name) return &v.texture;
+    return nullptr;
+}
+
 }  // namespace
 
 Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(options.width), mHeight(options.height) {
+    if (!options.voxelView.empty()) {
+        bool known = false;
+        std::string names;
+        for (const auto& [value, name] : EnumNames<VoxelViewSource>::values) {
+            names += std::string(names.empty() ? "" : ", ") + name;
+            if (options.voxelView == name) {
+                mVoxelParams.source = value;
+                known = true;
+            }
+        }
+        if (!known) throw Error("unknown voxel view '" + options.voxelView + "' (valid: " + names + ")");
+        mVoxelDisplay = options.voxelWindow ? VoxelDisplay::Window : VoxelDisplay::Viewport;
+    }
+    mShowCones = options.coneOverlay;
     fs::path defaultFile = presetDir() / "default.json";
     bool isPreset = true;
     if (!options.preset.empty()) {
@@ -167,6 +199,10 @@ void Editor::renderViewport(int width, int height) {
         glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
         glBlitNamedFramebuffer(mOutputFBO.id(), 0, 0, 0, mRenderer.width(), mRenderer.height(), 0, 0, width, height,
                                GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        if (mVoxelDisplay == VoxelDisplay::Viewport && fs.technique == TechniqueKind::VCT) {
+            std::vector<VoxelGridView> grids = voxelGrids(fs);
+            mVoxelView.render(grids, voxelParams(fs, grids, float(width) / float(height)), 0, width, height);
+        }
         mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer);
         mReference.drawViewport(width, height);
     }
@@ -258,10 +294,181 @@ void Editor::drawCascadeOverlay() {
     }
 }
 
+std::vector<VoxelGridView> Editor::voxelGrids(const FrameSettings& fs) const {
+    return gi::voxelGrids(mRenderer.debugViews(), fs, mScene.bounds);
+}
+
+VoxelViewParams Editor::voxelParams(const FrameSettings& fs, const std::vector<VoxelGridView>& grids, float aspect) const {
+    VoxelViewParams params = mVoxelParams;
+    params.viewProj = projectionMatrix(fs.camera, aspect) * viewMatrix(fs.camera);
+    if (mVoxelAutoLevel) params.level = finestLevelHolding(grids, fs.camera.target);
+    return params;
+}
+
+void Editor::readConePick() {
+    if (!mShowCones || mPreset.header.technique != TechniqueKind::VCT || mRenderer.width() <= 0) return;
+    if (!mPickPending && mPickGeneration == mSceneGeneration) return;
+    mPickPending = false;
+    mPickGeneration = mSceneGeneration;
+    // The point stays where it was picked while the camera moves, so its cones can be seen from the side.
+    std::vector<DebugView> views = mRenderer.debugViews();
+    const GLuint* depth = viewTexture(views, "depth");
+    const GLuint* normal = viewTexture(views, "normal");
+    const GLuint* material = viewTexture(views, "roughnessMetallic");
+    mPick.valid = false;
+    if (!depth || !normal || !material) return;
+    glm::ivec2 size(mRenderer.width(), mRenderer.height());
+    glm::ivec2 px = glm::clamp(glm::ivec2(mPickUV * glm::vec2(size)), glm::ivec2(0), size - 1);
+    float d = 1.0f, n[4] = {}, m[4] = {};
+    glGetTextureSubImage(*depth, 0, px.x, px.y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof d, &d);
+    glGetTextureSubImage(*normal, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof n, n);
+    glGetTextureSubImage(*material, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof m, m);
+    mPick.pixel = px;
+    glm::vec3 nn(n[0], n[1], n[2]);
+    if (d >= 1.0f || glm::length(nn) < 1e-3f) return;  // the sky: no surface, no cones
+    // trace.comp's reconstruction of the pixel's position.
+    FrameSettings fs = frameSettings(mPreset, mScene, size.x, size.y);
+    glm::mat4 inv = glm::inverse(projectionMatrix(fs.camera, float(size.x) / float(size.y)) * viewMatrix(fs.camera));
+    glm::vec2 uv = (glm::vec2(px) + 0.5f) / glm::vec2(size);
+    glm::vec4 w = inv * glm::vec4(uv * 2.0f - 1.0f, d * 2.0f - 1.0f, 1.0f);
+    mPick.position = glm::vec3(w) / w.w;
+    mPick.normal = glm::normalize(nn);
+    mPick.roughness = m[0];
+    mPick.valid = true;
+}
+
+void Editor::drawConeOverlay() {
+    if (!mShowCones || mPreset.header.technique != TechniqueKind::VCT || !mPick.valid || !mScene.bounds.valid() || mWidth <= 0)
+        return;
+    FrameSettings fs = frameSettings(mPreset, mScene, mWidth, mHeight);
+    glm::mat4 viewProj = projectionMatrix(fs.camera, float(mWidth) / float(mHeight)) * viewMatrix(fs.camera);
+    std::vector<VoxelBox> boxes = vctLevels(fs.vct, mScene.bounds.min, mScene.bounds.max, fs.camera.eye);
+    float voxel = boxes.front().cellSize;
+    std::vector<ConeGlyph> glyphs = vctConeGlyphs(fs.vct, mPick.position, mPick.normal, fs.camera.eye, mPick.roughness, voxel);
+    float length = mConeLength * voxel, maxWeight = 0.0f;
+    for (const ConeGlyph& g : glyphs)
+        if (!g.specular) maxWeight = std::max(maxWeight, g.weight);
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    auto line = [&](const glm::vec3& a, const glm::vec3& b, ImU32 colour, float thickness) {
+        ImVec2 sa, sb;
+        if (projectToScreen(viewProj, a, display, sa) && projectToScreen(viewProj, b, display, sb))
+            draw->AddLine(sa, sb, colour, thickness);
+    };
+    for (const ConeGlyph& g : glyphs) {
+        // Heavier cones are drawn more opaque; the specular cone in orange.
+        int alpha = g.specular ? 230 : int(90.0f + 165.0f * (maxWeight > 0.0f ? g.weight / maxWeight : 1.0f));
+        ImU32 colour = g.specular ? IM_COL32(255, 150, 40, alpha) : IM_COL32(70, 230, 255, alpha);
+        glm::vec3 end = g.apex + g.direction * length;
+        line(g.apex, end, colour, 2.0f);
+        // The march's start after the nudge, where it lies within the drawn length.
+        ImVec2 s;
+        if (g.start < length && projectToScreen(viewProj, g.apex + g.direction * g.start, display, s))
+            draw->AddCircleFilled(s, 3.0f, colour);
+        // The aperture at the end: a circle across the axis, and two silhouette lines to it.
+        glm::mat3 frame = vctTangentFrame(g.direction);
+        float radius = length * g.tanHalf;
+        constexpr int kSegments = 32;
+        glm::vec3 previous = end + frame[0] * radius;
+        for (int i = 1; i <= kSegments; ++i) {
+            float a = 2.0f * glm::pi<float>() * float(i) / float(kSegments);
+            glm::vec3 q = end + (frame[0] * std::cos(a) + frame[1] * std::sin(a)) * radius;
+            line(previous, q, colour, 1.5f);
+            previous = q;
+        }
+        ImU32 faint = (colour & ~IM_COL32_A_MASK) | (ImU32(alpha / 3) << IM_COL32_A_SHIFT);
+        line(g.apex, end + frame[0] * radius, faint, 1.0f);
+        line(g.apex, end - frame[0] * radius, faint, 1.0f);
+    }
+    ImVec2 apex;
+    if (projectToScreen(viewProj, mPick.position, display, apex)) {
+        draw->AddCircleFilled(apex, 4.0f, IM_COL32(255, 255, 255, 230));
+        draw->AddCircle(apex, 4.0f, IM_COL32(0, 0, 0, 230), 0, 1.5f);
+    }
+}
+
+void Editor::vctPanel() {
+    ImGui::Separator();
+    ImGui::TextUnformatted("previewers");
+    int display = int(mVoxelDisplay);
+    ImGui::Combo("voxel view", &display, "off\0in the viewport\0in a window\0");
+    mVoxelDisplay = VoxelDisplay(display);
+    if (mVoxelDisplay != VoxelDisplay::Off) {
+        int source = int(mVoxelParams.source);
+        ImGui::Combo("voxels show", &source, "albedo\0normal\0emission\0radiance\0");
+        mVoxelParams.source = VoxelViewSource(source);
+        const VCTSettings& s = mPreset.vct;
+        int levels = s.mode == VCTMode::Dense ? 1 : s.levelCount;
+        if (levels > 1) {
+            ImGui::Checkbox("auto level", &mVoxelAutoLevel);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("the finest level that holds the camera's target");
+            ImGui::SameLine();
+            if (mVoxelAutoLevel) ImGui::BeginDisabled();
+            ImGui::SliderInt("voxel level", &mVoxelParams.level, 0, levels - 1);
+            if (mVoxelAutoLevel) ImGui::EndDisabled();
+        }
+        mVoxelParams.level = std::clamp(mVoxelParams.level, 0, levels - 1);
+        if (mVoxelParams.source == VoxelViewSource::Radiance) {
+            ImGui::SliderInt("voxel mip", &mVoxelParams.mip, 0, vctMipCount(s.gridResolution) - 1);
+            ImGui::SliderFloat("solid from", &mVoxelParams.opacityThreshold, 0.01f, 1.0f, "opacity %.2f");
+        }
+        if (mVoxelParams.source == VoxelViewSource::Radiance || mVoxelParams.source == VoxelViewSource::Emission)
+            ImGui::SliderFloat("voxel exposure", &mVoxelParams.exposure, -10.0f, 10.0f, "%.1f EV");
+        ImGui::Checkbox("voxel edges", &mVoxelParams.edges);
+    }
+    ImGui::Checkbox("cone set at picked pixel", &mShowCones);
+    if (mShowCones) {
+        ImGui::SliderFloat("cone length", &mConeLength, 1.0f, 64.0f, "%.0f voxels");
+        if (ImGui::Button("Centre pixel")) {
+            mPickUV = glm::vec2(0.5f);
+            mPickPending = true;
+        }
+        ImGui::SameLine();
+        hintText("left click the viewport to pick");
+        if (mPick.valid)
+            ImGui::TextDisabled("pixel (%d, %d): n (%.2f, %.2f, %.2f), roughness %.2f", mPick.pixel.x, mPick.pixel.y,
+                                mPick.normal.x, mPick.normal.y, mPick.normal.z, mPick.roughness);
+        else
+            ImGui::TextDisabled("pixel (%d, %d): no surface", mPick.pixel.x, mPick.pixel.y);
+    }
+}
+
+void Editor::voxelWindow() {
+    if (mVoxelDisplay != VoxelDisplay::Window || mPreset.header.technique != TechniqueKind::VCT || mWidth <= 0) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(kLeftWidth + 2 * kMargin, display.y - 300.0f - kMargin), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(400.0f, 300.0f), ImGuiCond_FirstUseEver);
+    bool open = true;
+    if (ImGui::Begin("Voxel view", &open, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse)) {
+        ImVec2 avail = ImGui::GetContentRegionAvail();
+        int w = std::max(int(avail.x), 16), h = std::max(int(avail.y), 16);
+        if (!mVoxelImage || mVoxelImage.width() != w || mVoxelImage.height() != h) {
+            mVoxelImage = gl::Texture::create2D(GL_RGBA8, w, h);
+            if (!mVoxelFBO) mVoxelFBO = gl::createFramebuffer();
+            glNamedFramebufferTexture(mVoxelFBO.id(), GL_COLOR_ATTACHMENT0, mVoxelImage.id(), 0);
+        }
+        FrameSettings fs = frameSettings(mPreset, mScene, mWidth, mHeight);
+        std::vector<VoxelGridView> grids = voxelGrids(fs);
+        mVoxelView.render(grids, voxelParams(fs, grids, float(w) / float(h)), mVoxelFBO.id(), w, h);
+        ImGui::Image(ImTextureID(intptr_t(mVoxelImage.id())), ImVec2(float(w), float(h)), ImVec2(0, 1), ImVec2(1, 0));
+    }
+    ImGui::End();
+    if (!open) mVoxelDisplay = VoxelDisplay::Off;
+}
+
 void Editor::drawPanels() {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     uint8_t cost = 0;
     drawCascadeOverlay();
+    const ImGuiIO& io = ImGui::GetIO();
+    // A left click on the viewport (not on a panel) picks the pixel whose cone set is drawn.
+    if (mShowCones && mPreset.header.technique == TechniqueKind::VCT && !io.WantCaptureMouse &&
+        ImGui::IsMouseClicked(ImGuiMouseButton_Left) && display.x > 0.0f && display.y > 0.0f) {
+        mPickUV = glm::vec2(io.MousePos.x / display.x, 1.0f - io.MousePos.y / display.y);
+        mPickPending = true;
+    }
+    readConePick();
+    drawConeOverlay();
 
     ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(kLeftWidth, display.y - 2 * kMargin), ImGuiCond_FirstUseEver);
@@ -278,7 +485,9 @@ void Editor::drawPanels() {
         // Every fixed section the preset has, so a new technique's settings appear by themselves.
         mPreset.forEachSection([&](auto& section) {
             using S = std::decay_t<decltype(section)>;
-            bool open = S::kSection == "render" || S::kSection == "toneMap";
+            // The active technique's settings are what is being tuned: open them too.
+            bool open = S::kSection == "render" || S::kSection == "toneMap" ||
+                        (S::kSection == "vct" && mPreset.header.technique == TechniqueKind::VCT);
             if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
             cost |= drawSettings(section);
             if constexpr (std::is_same_v<S, CameraSettings>) cost |= cameraTools();
@@ -287,6 +496,7 @@ void Editor::drawPanels() {
                 std::string note = lpvIgnoredLights(mPreset.lightsFromScene ? mScene.lights : mPreset.lights);
                 if (!note.empty()) wrappedText(kWarningColor, note);
             }
+            if constexpr (std::is_same_v<S, VCTSettings>) vctPanel();
         });
         ImGui::PopItemWidth();
     }
@@ -318,6 +528,7 @@ void Editor::drawPanels() {
     }
     ImGui::End();
 
+    voxelWindow();
     apply(cost);
 }
 

@@ -8,6 +8,7 @@
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/scene.h"
+#include "gi/vct/vct_views.h"
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
 #include "ui/reference_panel.h"
@@ -25,6 +26,9 @@ struct EditorOptions {
     int height = 720;
     std::string reference;         // non-empty: the Reference panel starts on, in this view (live, split, ...)
     int referenceSPP = 0;          // > 0: overrides the preset's reference.spp
+    std::string voxelView;         // VCT: albedo, normal, emission or radiance shows that voxel view in the viewport
+    bool voxelWindow = false;      // the voxel view in its own window instead of the viewport
+    bool coneOverlay = true;       // VCT: the cone set at the picked pixel (at first the centre) over the viewport
 };
 
 class Editor {
@@ -54,6 +58,23 @@ private:
     std::filesystem::path mConfirmOverwrite;  // Save As target the user was warned exists
     bool mDirty = false;
     bool mShowCascades = true;  // LPV cascade boxes drawn over the viewport
+    // VCT previewers (vctPanel): the voxel view and the cone set at a picked pixel.
+    enum class VoxelDisplay { Off, Viewport, Window };
+    VoxelDisplay mVoxelDisplay = VoxelDisplay::Off;
+    VoxelViewParams mVoxelParams;
+    bool mVoxelAutoLevel = true;    // the finest level holding the camera's target
+    VoxelViewParams voxelParams(const FrameSettings& fs, const std::vector<VoxelGridView>& grids, float aspect) const;
+    bool mShowCones = true;
+    float mConeLength = 12.0f;      // drawn cone length, in level-0 voxels
+    glm::vec2 mPickUV{0.5f};        // picked point of the viewport, 0..1 from the bottom left
+    bool mPickPending = true;       // read the G-buffer at mPickUV after this frame's render
+    struct ConePick {
+        bool valid = false;
+        glm::ivec2 pixel{0};
+        glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f};
+        float roughness = 1.0f;
+    } mPick;
+    uint64_t mPickGeneration = 0;   // mSceneGeneration the pick was read in
     std::string mLoadedScene;           // header.scene that mScene came from
     Scene mScene;
     Renderer mRenderer;
@@ -63,6 +84,9 @@ private:
     uint64_t mSceneGeneration = 0;  // grows with each installed scene
     uint64_t mLiveGeneration = 0;   // grows with each change that can alter the live image
     gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
+    VoxelView mVoxelView;
+    gl::Texture mVoxelImage;            // the voxel view's window
+    gl::Framebuffer mVoxelFBO;
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
     std::string mGLRenderer;
@@ -87,6 +111,11 @@ private:
     uint8_t lightsPanel();
     void statsPanel();
     void drawCascadeOverlay();
+    void vctPanel();
+    void voxelWindow();
+    std::vector<VoxelGridView> voxelGrids(const FrameSettings& fs) const;
+    void readConePick();
+    void drawConeOverlay();
 };
 
 }  // namespace gi::ui

@@ -1,0 +1,190 @@
+#include "gi/vct/vct_views.h"
+
+#include "gi/util/error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi {
+
+namespace {
+
+glm::ivec3 wrapOf(const glm::ivec3& origin, int res) { return ((origin % res) + res) % res; }
+
+}  // namespace
+
+std::vector<VoxelGridView> voxelGrids(const VCT& vct, VCTMode mode) {
+    std::vector<VoxelGridView> grids;
+    int res = vct.resolution();
+    for (const VCT::Level& l : vct.levels()) {
+        VoxelGridView g;
+        g.albedo = l.albedo.id();
+        g.normal = l.normal.id();
+        g.emission = l.emission.id();
+        g.radiance = l.radiance.id();
+        g.mipCount = vctMipCount(res);
+        g.resolution = res;
+        g.box = l.box;
+        g.wrap = mode == VCTMode::Clipmap ? wrapOf(l.box.origin, res) : glm::ivec3(0);
+        grids.push_back(g);
+    }
+    return grids;
+}
+
+std::vector<VoxelGridView> voxelGrids(const std::vector<DebugView>& views, const FrameSettings& fs, const Bounds& sceneBounds) {
+    std::vector<VoxelGridView> grids;
+    if (fs.technique != TechniqueKind::VCT || !sceneBounds.valid()) return grids;
+    auto find = [&](const std::string& name) -> const DebugView* {
+        for (const DebugView& v : views)
+            if (v.name == name) return &v;
+        return nullptr;
+    };
+    std::vector<VoxelBox> boxes = vctLevels(fs.vct, sceneBounds.min, sceneBounds.max, fs.camera.eye);
+    for (size_t k = 0; k < boxes.size(); ++k) {
+        // VCT::debugViews numbers the views only when there are several levels.
+        std::string suffix = boxes.size() > 1 ? std::to_string(k) : "";
+        const DebugView* albedo = find("vct.albedo" + suffix);
+        const DebugView* normal = find("vct.normal" + suffix);
+        const DebugView* emission = find("vct.emission" + suffix);
+        const DebugView* radiance = find("vct.radiance" + suffix);
+        if (!albedo || !normal || !emission || !radiance) return {};
+        VoxelGridView g;
+        g.albedo = albedo->texture;
+        g.normal = normal->texture;
+        g.emission = emission->texture;
+        g.radiance = radiance->texture;
+        g.resolution = radiance->width;
+        g.mipCount = vctMipCount(g.resolution);
+        g.box = boxes[k];
+        g.wrap = fs.vct.mode == VCTMode::Clipmap ? wrapOf(boxes[k].origin, g.resolution) : glm::ivec3(0);
+        grids.push_back(g);
+    }
+    return grids;
+}
+
+int finestLevelHolding(const std::vector<VoxelGridView>& grids, const glm::vec3& p) {
+    for (size_t k = 0; k < grids.size(); ++k) {
+        glm::vec3 lo = grids[k].box.min, hi = lo + glm::vec3(grids[k].box.extent(grids[k].resolution));
+        if (glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThanEqual(p, hi))) return int(k);
+    }
+    return std::max(int(grids.size()) - 1, 0);
+}
+
+VoxelView::VoxelView() : mProgram(gl::fullscreenProgram("vct.voxelView", "vct/voxel_view.frag")) {
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    mVAO = gl::VertexArray(vao);
+    GLuint sampler = 0;
+    glCreateSamplers(1, &sampler);
+    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    mNearest = gl::Sampler(sampler);
+}
+
+void VoxelView::render(const std::vector<VoxelGridView>& grids, const VoxelViewParams& params, GLuint framebuffer, int width,
+                       int height) const {
+    GI_ASSERT(width > 0 && height > 0, "voxel view of an empty size");
+    glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "vct.voxelView");
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, width, height);
+    if (grids.empty()) {
+        glClearColor(params.background.r, params.background.g, params.background.b, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+    } else {
+        const VoxelGridView& g = grids[size_t(std::clamp(params.level, 0, int(grids.size()) - 1))];
+        bool radiance = params.source == VoxelViewSource::Radiance;
+        int mip = radiance ? std::clamp(params.mip, 0, g.mipCount - 1) : 0;
+        GLuint packed = params.source == VoxelViewSource::Normal     ? g.normal
+                        : params.source == VoxelViewSource::Emission ? g.emission
+                                                                     : g.albedo;
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glBindVertexArray(mVAO.id());
+        mProgram.use();
+        mProgram.set("uInvViewProj", glm::inverse(params.viewProj));
+        mProgram.set("uGridMin", g.box.min);
+        mProgram.set("uCellSize", g.box.cellSize);
+        mProgram.set("uResolution", g.resolution);
+        mProgram.set("uWrap", g.wrap);
+        mProgram.set("uMip", mip);
+        mProgram.set("uSource", int(params.source));
+        mProgram.set("uExposureScale", std::exp2(params.exposure));
+        mProgram.set("uOpacityThreshold", params.opacityThreshold);
+        mProgram.set("uEdges", params.edges ? 1 : 0);
+        mProgram.set("uBackground", params.background);
+        // texelFetch only, but an r32ui volume under a linear filter is incomplete and reads 0.
+        glBindTextureUnit(0, g.albedo);
+        glBindTextureUnit(1, packed);
+        glBindTextureUnit(2, g.radiance);
+        for (GLuint u = 0; u < 3; ++u) glBindSampler(u, mNearest.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        for (GLuint u = 0; u < 3; ++u) {
+            glBindSampler(u, 0);
+            glBindTextureUnit(u, 0);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glPopDebugGroup();
+}
+
+std::vector<uint8_t> VoxelView::renderImage(const std::vector<VoxelGridView>& grids, const VoxelViewParams& params, int width,
+                                            int height) const {
+    gl::Texture image = gl::Texture::create2D(GL_RGBA8, width, height);
+    gl::Framebuffer fbo = gl::createFramebuffer();
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, image.id(), 0);
+    gl::checkFramebuffer(fbo.id(), "voxel view");
+    render(grids, params, fbo.id(), width, height);
+    std::vector<uint8_t> pixels(size_t(width) * size_t(height) * 4);
+    glGetTextureImage(image.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
+    return pixels;
+}
+
+bool VoxelView::reloadShaders(std::string& log) {
+    if (mProgram.reload()) return true;
+    log += mProgram.log() + "\n";
+    return false;
+}
+
+glm::mat3 vctTangentFrame(const glm::vec3& n) {
+    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n.z);
+    float b = n.x * n.y * a;
+    glm::vec3 t(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
+    glm::vec3 bt(b, s + n.y * n.y * a, -n.y);
+    return glm::mat3(t, bt, n);
+}
+
+std::vector<ConeGlyph> vctConeGlyphs(const VCTSettings& s, const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye,
+                                     float roughness, float voxelSize) {
+    std::vector<ConeGlyph> glyphs;
+    glm::mat3 frame = vctTangentFrame(n);
+    // trace.glsl traceCone: the march starts nudge voxel diagonals out, over max(n.w, 0.25).
+    auto start = [&](const glm::vec3& dir) {
+        return s.nudge * voxelSize * 1.7320508f / std::max(glm::dot(n, dir), 0.25f);
+    };
+    ConeSet set = makeConeSet(s);
+    for (const Cone& c : set.cones) {
+        ConeGlyph g;
+        g.apex = p;
+        g.direction = glm::normalize(frame * c.direction);
+        g.start = start(g.direction);
+        g.tanHalf = std::tan(0.5f * set.aperture);
+        g.weight = c.weight;
+        glyphs.push_back(g);
+    }
+    if (s.specularCone) {
+        // trace.comp: the reflected view direction, the aperture lerped by roughness.
+        ConeGlyph g;
+        g.apex = p;
+        g.direction = glm::normalize(glm::reflect(glm::normalize(p - eye), n));
+        g.start = start(g.direction);
+        float aperture = glm::radians(s.specularApertureMin + (s.specularApertureMax - s.specularApertureMin) * roughness);
+        g.tanHalf = std::tan(0.5f * aperture);
+        g.specular = true;
+        glyphs.push_back(g);
+    }
+    return glyphs;
+}
+
+}  // namespace gi
