@@ -11,7 +11,11 @@ namespace gi {
 
 namespace {
 
-constexpr size_t kVoxelBytes = 3 * 4 + 2 * 8;  // albedo, normal, emission (r32ui); exit front/back (RGBA16F)
+// The radiance leaving each side of a voxel's surface (inject, bounce, resolve): positive HDR
+// colour, no alpha, so the packed float format at half RGBA16F's size (5-6 bit mantissas, about
+// 3% steps, far below the voxelization's own error).
+constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;
+constexpr size_t kVoxelBytes = 3 * 4 + 2 * 4;  // albedo, normal, emission (r32ui); exit front/back (R11F_G11F_B10F)
 
 size_t voxels(int res) { return size_t(res) * res * res; }
 GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
@@ -137,8 +141,8 @@ void VCT::allocate(const FrameSettings& fs) {
         l.albedo = gl::Texture::create3D(GL_R32UI, r, r, r);
         l.normal = gl::Texture::create3D(GL_R32UI, r, r, r);
         l.emission = gl::Texture::create3D(GL_R32UI, r, r, r);
-        l.exitFront = gl::Texture::create3D(GL_RGBA16F, r, r, r);
-        l.exitBack = gl::Texture::create3D(GL_RGBA16F, r, r, r);
+        l.exitFront = gl::Texture::create3D(kExitFormat, r, r, r);
+        l.exitBack = gl::Texture::create3D(kExitFormat, r, r, r);
         l.radiance = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
         mVoxelBytes += l.albedo.bytes() * 3 + l.exitFront.bytes() * 2;
         mRadianceBytes += l.radiance.bytes();
@@ -315,8 +319,8 @@ void VCT::bindVoxelImages(const Level& l, GLenum exitAccess) const {
     // The binding points every VCT pass shares: albedo 0, normal 1, the two sides' radiance 3, 4.
     glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, exitAccess, GL_RGBA16F);
-    glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, exitAccess, GL_RGBA16F);
+    glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
+    glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
 }
 
 void VCT::resolve(Level& level, bool bounced) {
@@ -325,8 +329,8 @@ void VCT::resolve(Level& level, bool bounced) {
     mResolveProg.set("uSH", mSHVoxels ? 1 : 0);
     glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(3, (bounced ? level.bouncedFront : level.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-    glBindImageTexture(4, (bounced ? level.bouncedBack : level.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+    glBindImageTexture(3, (bounced ? level.bouncedFront : level.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
+    glBindImageTexture(4, (bounced ? level.bouncedBack : level.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
     glBindImageTexture(5, level.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (mSHVoxels) {
         glBindImageTexture(6, mSH[0].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -409,8 +413,8 @@ void VCT::bounce(const FrameContext& ctx) {
     // volumes, in bouncedFront/Back, which resolve() then reads.
     for (Level& l : mLevels)
         if (l.bouncedFront.width() != mResolution) {
-            l.bouncedFront = gl::Texture::create3D(GL_RGBA16F, mResolution, mResolution, mResolution);
-            l.bouncedBack = gl::Texture::create3D(GL_RGBA16F, mResolution, mResolution, mResolution);
+            l.bouncedFront = gl::Texture::create3D(kExitFormat, mResolution, mResolution, mResolution);
+            l.bouncedBack = gl::Texture::create3D(kExitFormat, mResolution, mResolution, mResolution);
             l.occupiedList = gl::createBuffer(voxels(mResolution) * 4, nullptr, 0);
             l.occupiedDispatch = gl::createBuffer(16, nullptr, GL_DYNAMIC_STORAGE_BIT);
             mVoxelBytes += l.bouncedFront.bytes() * 2 + voxels(mResolution) * 4;
@@ -437,8 +441,8 @@ void VCT::bounce(const FrameContext& ctx) {
         for (Level& l : mLevels) {
             setGridUniforms(mBounceProg, l);
             bindVoxelImages(l, GL_READ_ONLY);
-            glBindImageTexture(5, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-            glBindImageTexture(6, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glBindImageTexture(5, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
+            glBindImageTexture(6, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l.occupiedDispatch.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, l.occupiedList.id());
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, l.occupiedDispatch.id());
@@ -546,9 +550,9 @@ std::vector<Technique::VolumeMemory> VCT::volumeMemory() const {
         v.push_back({"albedo" + s, r + "R32UI (RGBA8 + count)", l.albedo.bytes()});
         v.push_back({"normal" + s, r + "R32UI (RGBA8 + count)", l.normal.bytes()});
         v.push_back({"emission" + s, r + "R32UI (RGBA8 + count)", l.emission.bytes()});
-        v.push_back({"exitRadiance" + s, r + "RGBA16F x 2 (front, back)", l.exitFront.bytes() + l.exitBack.bytes()});
+        v.push_back({"exitRadiance" + s, r + "R11F_G11F_B10F x 2 (front, back)", l.exitFront.bytes() + l.exitBack.bytes()});
         if (l.bouncedFront.bytes())
-            v.push_back({"bouncedRadiance" + s, r + "RGBA16F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});
+            v.push_back({"bouncedRadiance" + s, r + "R11F_G11F_B10F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});
         v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});
     }
     if (mAnisotropic)

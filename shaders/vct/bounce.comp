@@ -10,10 +10,10 @@ layout(std430, binding = 0) readonly buffer Dispatch { uint groupsX, groupsY, gr
 layout(std430, binding = 1) readonly buffer Voxels { uint voxels[]; };  // compact.comp's list
 layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
-layout(binding = 3, rgba16f) uniform readonly image3D uDirectFront;  // inject.comp's result
-layout(binding = 4, rgba16f) uniform readonly image3D uDirectBack;
-layout(binding = 5, rgba16f) uniform writeonly image3D uExitFront;   // what resolve.comp reads next
-layout(binding = 6, rgba16f) uniform writeonly image3D uExitBack;
+layout(binding = 3, r11f_g11f_b10f) uniform readonly image3D uDirectFront;  // inject.comp's result
+layout(binding = 4, r11f_g11f_b10f) uniform readonly image3D uDirectBack;
+layout(binding = 5, r11f_g11f_b10f) uniform writeonly image3D uExitFront;   // what resolve.comp reads next
+layout(binding = 6, r11f_g11f_b10f) uniform writeonly image3D uExitBack;
 
 uniform int uConeCount;
 uniform vec4 uCones[kVCTMaxCones];

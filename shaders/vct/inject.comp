@@ -11,8 +11,8 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
 layout(binding = 2, r32ui) uniform readonly uimage3D uEmissionVox;
-layout(binding = 3, rgba16f) uniform image3D uExitFront;
-layout(binding = 4, rgba16f) uniform image3D uExitBack;
+layout(binding = 3, r11f_g11f_b10f) uniform image3D uExitFront;
+layout(binding = 4, r11f_g11f_b10f) uniform image3D uExitBack;
 layout(binding = kVCTUnitShadow2D) uniform sampler2DShadow uShadow2D[kVCTMaxLights];
 layout(binding = kVCTUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVCTMaxLights];
 

@@ -8,8 +8,8 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
-layout(binding = 3, rgba16f) uniform readonly image3D uExitFront;
-layout(binding = 4, rgba16f) uniform readonly image3D uExitBack;
+layout(binding = 3, r11f_g11f_b10f) uniform readonly image3D uExitFront;
+layout(binding = 4, r11f_g11f_b10f) uniform readonly image3D uExitBack;
 layout(binding = 5, rgba16f) uniform writeonly image3D uRadiance;
 layout(binding = 6, rgba16f) uniform writeonly image3D uSHR;
 layout(binding = 7, rgba16f) uniform writeonly image3D uSHG;
