@@ -142,8 +142,8 @@ const VCT& vctOf(const Renderer& r) {
 }
 
 std::vector<float> readRGBA(const gl::Texture& t, int level) {
-    int n = std::max(t.width() >> level, 1);
-    std::vector<float> v(size_t(n) * n * n * 4);
+    size_t texels = size_t(std::max(t.width() >> level, 1)) * std::max(t.height() >> level, 1) * std::max(t.depth() >> level, 1);
+    std::vector<float> v(texels * 4);
     glGetTextureImage(t.id(), level, GL_RGBA, GL_FLOAT, GLsizei(v.size() * 4), v.data());
     return v;
 }
@@ -187,34 +187,48 @@ TEST_F(VCTGL, MipsAreConsistent) {
         EXPECT_LT(worst, 2e-3) << "mip " << level;  // fp16 storage
         fine = coarse;
     }
-    // Anisotropic level 0 from the base level, direction +X (index 0) and -Y (index 3).
+    // Anisotropic: the six directions side by side along x in one atlas (slab d starts at x = d n).
+    // Its level 0 from the base level, and its level 1 from its level 0, for every direction:
+    // along the direction, front + (1 - front.a) * back over the 4 child pairs, averaged.
+    const gl::Texture& atlas = v.anisotropicAtlas();
+    ASSERT_EQ(atlas.width(), 6 * (res / 2));
+    ASSERT_EQ(atlas.height(), res / 2);
+    auto atlasIdx = [](int n, int d, int x, int y, int z) { return ((size_t(z) * n + y) * 6 * n + size_t(d) * n + x) * 4; };
     std::vector<float> base = readRGBA(radiance, 0);
-    for (int d : {0, 3}) {
-        std::vector<float> aniso = readRGBA(v.anisotropicVolumes()[size_t(d)], 0);
-        int n = res / 2, axis = d / 2;
-        bool positive = d % 2 == 0;
-        double worst = 0;
-        for (int z = 0; z < n; ++z)
-            for (int y = 0; y < n; ++y)
-                for (int x = 0; x < n; ++x) {
-                    glm::dvec4 sum(0.0);
-                    for (int k = 0; k < 8; ++k) {
-                        glm::ivec3 c(2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2));
-                        if (c[axis] % 2 == 1) continue;  // visit each pair from its lower child
-                        glm::ivec3 c2 = c;
-                        c2[axis] += 1;
-                        size_t a = idx(res, c.x, c.y, c.z), b = idx(res, c2.x, c2.y, c2.z);
-                        glm::dvec4 lo(base[a], base[a + 1], base[a + 2], base[a + 3]);
-                        glm::dvec4 hi(base[b], base[b + 1], base[b + 2], base[b + 3]);
-                        glm::dvec4 nearer = positive ? lo : hi, farther = positive ? hi : lo;
-                        sum += nearer + (1.0 - nearer.w) * farther;
+    std::vector<float> atlas0 = readRGBA(atlas, 0), atlas1 = readRGBA(atlas, 1);
+    for (int d = 0; d < 6; ++d)
+        for (int level : {0, 1}) {
+            int n = (res / 2) >> level, axis = d / 2;
+            bool positive = d % 2 == 0;
+            // The source texel of child c: the base level (level 0) or the atlas slab one level up.
+            auto child = [&](glm::ivec3 c) {
+                const float* t = level == 0 ? &base[idx(res, c.x, c.y, c.z)] : &atlas0[atlasIdx(2 * n, d, c.x, c.y, c.z)];
+                return glm::dvec4(t[0], t[1], t[2], t[3]);
+            };
+            const std::vector<float>& dest = level == 0 ? atlas0 : atlas1;
+            double worst = 0, largest = 0;
+            for (int z = 0; z < n; ++z)
+                for (int y = 0; y < n; ++y)
+                    for (int x = 0; x < n; ++x) {
+                        glm::dvec4 sum(0.0);
+                        for (int k = 0; k < 8; ++k) {
+                            glm::ivec3 c(2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2));
+                            if (c[axis] % 2 == 1) continue;  // visit each pair from its lower child
+                            glm::ivec3 c2 = c;
+                            c2[axis] += 1;
+                            glm::dvec4 lo = child(c), hi = child(c2);
+                            glm::dvec4 nearer = positive ? lo : hi, farther = positive ? hi : lo;
+                            sum += nearer + (1.0 - nearer.w) * farther;
+                        }
+                        for (int c = 0; c < 4; ++c) {
+                            worst = std::max(worst, std::abs(dest[atlasIdx(n, d, x, y, z) + size_t(c)] - 0.25 * sum[c]) /
+                                                        std::max(1.0, std::abs(0.25 * sum[c])));
+                            largest = std::max(largest, 0.25 * sum[c]);
+                        }
                     }
-                    for (int c = 0; c < 4; ++c)
-                        worst = std::max(worst, std::abs(aniso[idx(n, x, y, z) + size_t(c)] - 0.25 * sum[c]) /
-                                                    std::max(1.0, std::abs(0.25 * sum[c])));
-                }
-        EXPECT_LT(worst, 2e-3) << "anisotropic direction " << d;
-    }
+            EXPECT_LT(worst, 2e-3) << "anisotropic direction " << d << " level " << level;
+            EXPECT_GT(largest, 0.01) << "anisotropic direction " << d << " level " << level << " is empty";
+        }
 }
 
 // The grid is static: a second frame with the same scene and grid does not voxelize again.

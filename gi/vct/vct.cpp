@@ -96,6 +96,8 @@ VCT::VCT()
     mEmptyFBO = gl::createFramebuffer();
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
+    // The anisotropic atlas is read one mip at a time (trace.glsl blends the two by hand).
+    mAnisoSampler = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_NEAREST);
     mShadowSampler = makeSampler(GL_CLAMP_TO_EDGE, GL_LINEAR);
     glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
@@ -148,13 +150,12 @@ void VCT::allocate(const FrameSettings& fs) {
         mRadianceBytes += l.radiance.bytes();
         mLevels.push_back(std::move(l));
     }
-    for (auto& t : mAniso) t = gl::Texture();
+    mAniso = gl::Texture();
     for (auto& t : mSH) t = gl::Texture();
-    if (mAnisotropic)
-        for (auto& t : mAniso) {
-            t = gl::Texture::create3D(GL_RGBA16F, r / 2, r / 2, r / 2, std::max(mMipCount - 1, 1));
-            mRadianceBytes += t.bytes();
-        }
+    if (mAnisotropic) {
+        mAniso = gl::Texture::create3D(GL_RGBA16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
+        mRadianceBytes += mAniso.bytes();
+    }
     if (mSHVoxels)
         for (auto& t : mSH) {
             t = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
@@ -344,11 +345,15 @@ void VCT::resolve(Level& level, bool bounced) {
 
 void VCT::buildMips() {
     mMipProg.use();
-    auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction) {
-        int size = std::max(dst.width() >> dstLevel, 1);
+    // size: the destination's voxels per side; srcOffset, dstOffset: the first x of the
+    // direction's slab in the anisotropic atlas (0 elsewhere).
+    auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction, int size,
+                     int srcOffset, int dstOffset) {
         mMipProg.set("uSourceLevel", srcLevel);
         mMipProg.set("uDestSize", glm::ivec3(size));
         mMipProg.set("uDirection", direction);
+        mMipProg.set("uSourceOffsetX", srcOffset);
+        mMipProg.set("uDestOffsetX", dstOffset);
         glBindTextureUnit(0, src.id());
         glBindImageTexture(0, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         GLuint g = groups(size, 4);
@@ -356,14 +361,15 @@ void VCT::buildMips() {
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     };
     for (Level& l : mLevels)
-        for (int m = 1; m < mMipCount; ++m) level(l.radiance, m - 1, l.radiance, m, -1);
+        for (int m = 1; m < mMipCount; ++m) level(l.radiance, m - 1, l.radiance, m, -1, mResolution >> m, 0, 0);
     if (mSHVoxels)
         for (auto& t : mSH)
-            for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1);
+            for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1, mResolution >> m, 0, 0);
     if (mAnisotropic)
         for (int d = 0; d < 6; ++d) {
-            level(mLevels[0].radiance, 0, mAniso[size_t(d)], 0, d);
-            for (int m = 1; m < mMipCount - 1; ++m) level(mAniso[size_t(d)], m - 1, mAniso[size_t(d)], m, d);
+            int half = mResolution / 2;
+            level(mLevels[0].radiance, 0, mAniso, 0, d, half, 0, d * half);
+            for (int m = 1; m < mMipCount - 1; ++m) level(mAniso, m - 1, mAniso, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m));
         }
 }
 
@@ -373,10 +379,8 @@ void VCT::bindRadiance() const {
         glBindTextureUnit(unit, mLevels[k].radiance.id());
         glBindSampler(unit, mMode == VCTMode::Clipmap ? mRepeat.id() : mLinear.id());
     }
-    for (int d = 0; d < 6; ++d) {
-        glBindTextureUnit(GLuint(vct::kVCTUnitAniso + d), mAniso[size_t(d)].id());
-        glBindSampler(GLuint(vct::kVCTUnitAniso + d), mLinear.id());
-    }
+    glBindTextureUnit(GLuint(vct::kVCTUnitAniso), mAniso.id());
+    glBindSampler(GLuint(vct::kVCTUnitAniso), mAnisoSampler.id());
     for (int c = 0; c < 3; ++c) {
         glBindTextureUnit(GLuint(vct::kVCTUnitSH + c), mSH[size_t(c)].id());
         glBindSampler(GLuint(vct::kVCTUnitSH + c), mLinear.id());
@@ -519,11 +523,8 @@ std::vector<DebugView> VCT::debugViews() const {
         v.push_back({"vct.normal" + s, l.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1});
         v.push_back({"vct.emission" + s, l.emission.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
     }
-    const char* dirs[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
-    if (mAnisotropic)
-        for (int d = 0; d < 6; ++d)
-            v.push_back({std::string("vct.anisotropic") + dirs[d], mAniso[size_t(d)].id(), GL_TEXTURE_3D, shared::kViewVoxelColor,
-                         r / 2, r / 2, 0, 1, 1});
+    if (mAnisotropic)  // +X -X +Y -Y +Z -Z from left to right
+        v.push_back({"vct.anisotropic", mAniso.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, 6 * (r / 2), r / 2, 0, 1, 1});
     if (mSHVoxels) {
         DebugView sh{"vct.sh", mSH[0].id(), GL_TEXTURE_3D, shared::kViewSHVolume, r, r, 0, 1, 1};
         sh.extra[0] = mSH[1].id();
@@ -556,8 +557,8 @@ std::vector<Technique::VolumeMemory> VCT::volumeMemory() const {
         v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});
     }
     if (mAnisotropic)
-        v.push_back({"anisotropic", std::to_string(mResolution / 2) + "^3 RGBA16F x 6, " + std::to_string(mMipCount - 1) + " mips",
-                     6 * mAniso[0].bytes()});
+        v.push_back({"anisotropic", std::to_string(mResolution / 2) + "^3 RGBA16F x 6 (one atlas), " + std::to_string(mMipCount - 1) + " mips",
+                     mAniso.bytes()});
     if (mSHVoxels) v.push_back({"sh", r + "RGBA16F x 3" + mips, 3 * mSH[0].bytes()});
     if (mLowIndirect.bytes())
         v.push_back({"traceTargets", std::to_string(mLowIndirect.width()) + "x" + std::to_string(mLowIndirect.height()) + " RGBA16F x 2",

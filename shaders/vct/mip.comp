@@ -13,11 +13,15 @@ layout(binding = 0, rgba16f) uniform writeonly image3D uDest;
 uniform int uSourceLevel;
 uniform ivec3 uDestSize;
 uniform int uDirection;  // -1: isotropic; 0..5: +X, -X, +Y, -Y, +Z, -Z
+// Anisotropic: the six directions lie side by side along x in one atlas; its slab starts at
+// these x in the source (0 when the source is the isotropic base level) and the destination.
+uniform int uSourceOffsetX;
+uniform int uDestOffsetX;
 
 void main() {
     ivec3 d = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(d, uDestSize))) return;
-    ivec3 base = d * 2;
+    ivec3 base = d * 2 + ivec3(uSourceOffsetX, 0, 0);
     if (uDirection < 0) {
         vec4 sum = vec4(0.0);
         for (int i = 0; i < 8; ++i) sum += texelFetch(uSource, base + ivec3(i & 1, (i >> 1) & 1, i >> 2), uSourceLevel);
@@ -43,5 +47,5 @@ void main() {
         }
         sum += near + (1.0 - near.a) * far;
     }
-    imageStore(uDest, d, sum * 0.25);
+    imageStore(uDest, d + ivec3(uDestOffsetX, 0, 0), sum * 0.25);
 }

@@ -24,12 +24,7 @@
 #endif
 layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
 #if VCT_ANISO
-layout(binding = kVCTUnitAniso) uniform sampler3D uAnisoPX;
-layout(binding = kVCTUnitAniso + 1) uniform sampler3D uAnisoNX;
-layout(binding = kVCTUnitAniso + 2) uniform sampler3D uAnisoPY;
-layout(binding = kVCTUnitAniso + 3) uniform sampler3D uAnisoNY;
-layout(binding = kVCTUnitAniso + 4) uniform sampler3D uAnisoPZ;
-layout(binding = kVCTUnitAniso + 5) uniform sampler3D uAnisoNZ;
+layout(binding = kVCTUnitAniso) uniform sampler3D uAniso;  // +X -X +Y -Y +Z -Z side by side along x
 #endif
 #if VCT_SH
 layout(binding = kVCTUnitSH) uniform sampler3D uSHR;
@@ -60,12 +55,28 @@ vec4 levelRadiance(int k, vec3 tc, float lod) {
 }
 
 #if VCT_ANISO
+// One mip m of the atlas: x kept half a texel inside the slab so the filter does not blend in
+// the neighbouring direction, and the fade to the zero border that y and z get from the sampler
+// applied to x by hand (a point u texels inside a face keeps 0.5 + u of the face texel).
+vec4 sampleAnisoMip(vec3 tc, float m, vec3 slab, vec3 w) {
+    float size = float(uResolution / 2) * exp2(-m);
+    float halfTexel = 0.5 / size;
+    float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
+    float fade = clamp(min(tc.x, 1.0 - tc.x) * size + 0.5, 0.0, 1.0);
+    return fade * (w.x * textureLod(uAniso, vec3((x + slab.x) / 6.0, tc.yz), m) +
+                   w.y * textureLod(uAniso, vec3((x + slab.y) / 6.0, tc.yz), m) +
+                   w.z * textureLod(uAniso, vec3((x + slab.z) / 6.0, tc.yz), m));
+}
+
 vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
-    // Weights dir^2, each from the volume of the direction's sign.
+    // Weights dir^2, each from the slab of the direction's sign: slab index 2 axis + (dir < 0);
+    // the two mips around lod each read at their own clamp, then blended.
     vec3 w = dir * dir;
-    return w.x * (dir.x > 0.0 ? textureLod(uAnisoPX, tc, lod) : textureLod(uAnisoNX, tc, lod)) +
-           w.y * (dir.y > 0.0 ? textureLod(uAnisoPY, tc, lod) : textureLod(uAnisoNY, tc, lod)) +
-           w.z * (dir.z > 0.0 ? textureLod(uAnisoPZ, tc, lod) : textureLod(uAnisoNZ, tc, lod));
+    vec3 slab = vec3(0.0, 2.0, 4.0) + step(dir, vec3(0.0));
+    float m = floor(lod), f = lod - m;
+    vec4 r = sampleAnisoMip(tc, m, slab, w);
+    if (f > 0.0) r = mix(r, sampleAnisoMip(tc, m + 1.0, slab, w), f);
+    return r;
 }
 #endif
 

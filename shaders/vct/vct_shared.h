@@ -15,7 +15,7 @@ GI_CONST int kVCTAtomicTries = 256;    // cap of the running-average compare-and
 
 // Texture units of the trace, bounce and inject passes (above the G-buffer units 0..8).
 GI_CONST int kVCTUnitRadiance = 9;     // premultiplied radiance + opacity, with mips (one per level: 9 + level)
-GI_CONST int kVCTUnitAniso = 16;       // six directional volumes +X -X +Y -Y +Z -Z (16..21)
+GI_CONST int kVCTUnitAniso = 16;       // the six directional volumes +X -X +Y -Y +Z -Z side by side along x
 GI_CONST int kVCTUnitSH = 22;          // R, G, B SH coefficient volumes (22..24)
 GI_CONST int kVCTUnitShadow2D = 9;     // inject: 2D shadow maps, one per light of the batch (9..12)
 GI_CONST int kVCTUnitShadowCube = 13;  // inject: cube shadow maps (13..16)
