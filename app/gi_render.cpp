@@ -173,6 +173,16 @@ int run(int argc, char** argv) {
             gi::writePNG(out / "views" / "vct.voxels.png", width, height, voxels.renderImage(grids, vp, width, height));
             vp.source = gi::VoxelViewSource::Radiance;
             gi::writePNG(out / "views" / "vct.voxels.radiance.png", width, height, voxels.renderImage(grids, vp, width, height));
+            // The cone set traced at the centre pixel, over the final image (as the editor draws it).
+            gi::SurfacePick pick;
+            if (gi::pickSurface(renderer, frame.camera, {width / 2, height / 2}, pick)) {
+                float voxel = gi::vctLevels(frame.vct, scene.bounds.min, scene.bounds.max, frame.camera.eye).front().cellSize;
+                std::vector<gi::ConeGlyph> glyphs =
+                    gi::vctConeGlyphs(frame.vct, pick.position, pick.normal, frame.camera.eye, pick.roughness, voxel);
+                std::vector<uint8_t> image = renderer.readLDR();
+                gi::drawGlyphLines(image, width, height, vp.viewProj, gi::coneGlyphLines(glyphs, 12.0f * voxel));
+                gi::writePNG(out / "views" / "vct.cones.png", width, height, image);
+            }
         }
     }
     if (reference || score) {

@@ -7,6 +7,8 @@
 #include "gi/vct/vct_views.h"
 #include "test_util.h"
 
+#include <algorithm>
+
 namespace gi {
 namespace {
 
@@ -58,6 +60,7 @@ Pixel pixelAt(const std::vector<uint8_t>& img, const glm::mat4& viewProj, const 
 }
 
 class VCTViews : public test::GLTest, public ::testing::WithParamInterface<VCTMode> {};
+class VCTPick : public test::GLTest {};
 
 TEST_P(VCTViews, VoxelViewShowsTheBoxAndBackground) {
     Scene scene = boxScene();
@@ -106,6 +109,70 @@ TEST_P(VCTViews, VoxelViewShowsTheBoxAndBackground) {
 
 INSTANTIATE_TEST_SUITE_P(Modes, VCTViews, ::testing::Values(VCTMode::Dense, VCTMode::Clipmap),
                          [](const auto& info) { return std::string(enumName(info.param)); });
+
+// The surface under a pixel is the one the camera sees there: the red box's front face (z = 0.75,
+// normal +z, the material's roughness 1) at the centre, nothing in the sky.
+TEST_F(VCTPick, PickSurfaceReconstructsTheGBufferPoint) {
+    Scene scene = boxScene();
+    FrameSettings fs = boxFrame(VCTMode::Dense);
+    Renderer renderer;
+    renderer.setScene(scene);
+    renderer.render(fs);
+    SurfacePick pick;
+    ASSERT_TRUE(pickSurface(renderer, fs.camera, {kSize / 2, kSize / 2}, pick));
+    EXPECT_NEAR(pick.position.x, 0.0f, 0.03f);
+    EXPECT_NEAR(pick.position.y, 0.75f, 0.03f);
+    EXPECT_NEAR(pick.position.z, 0.75f, 0.01f);
+    EXPECT_GT(pick.normal.z, 0.99f);
+    EXPECT_NEAR(pick.roughness, 1.0f, 0.01f);
+    EXPECT_FALSE(pickSurface(renderer, fs.camera, {kSize / 2, kSize - 1}, pick)) << "the top row sees the sky";
+}
+
+// Glyph strokes land where their world points project: a stroke across the image colours the
+// pixels under it, a dot a small disc, and pixels away from both stay as they were.
+TEST(VCTConeGlyphs, StrokesAreDrawnWhereTheyProject) {
+    const int w = 64, h = 48;
+    std::vector<uint8_t> img(size_t(w) * h * 4, 0);
+    glm::mat4 identity(1.0f);  // world x, y in [-1, 1] are the image
+    std::vector<GlyphLine> lines = {{{-0.5f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f, 1.0f}, 2.0f},
+                                    {{0.0f, 0.5f, 0.0f}, {0.0f, 0.5f, 0.0f}, {0.0f, 1.0f, 0.0f, 1.0f}, 6.0f}};
+    drawGlyphLines(img, w, h, identity, lines);
+    auto at = [&](int x, int y) { return &img[(size_t(y) * w + x) * 4]; };
+    // The line at y = h / 2 from x = w / 4 to 3 w / 4.
+    EXPECT_EQ(at(w / 2, h / 2)[0], 255);
+    EXPECT_EQ(at(w / 4 + 2, h / 2)[0], 255);
+    EXPECT_EQ(at(w / 8, h / 2)[0], 0) << "beyond the line's end";
+    EXPECT_EQ(at(w / 2, h / 2 + 4)[0], 0) << "off the line's width";
+    // The dot at (w / 2, 3 h / 4): green inside its radius of 3 pixels, untouched outside.
+    EXPECT_EQ(at(w / 2, 3 * h / 4)[1], 255);
+    EXPECT_EQ(at(w / 2 + 5, 3 * h / 4)[1], 0);
+    // Half-transparent strokes blend.
+    std::vector<uint8_t> grey(size_t(w) * h * 4, 100);
+    drawGlyphLines(grey, w, h, identity, {{{-1.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f, 0.5f}, 3.0f}});
+    EXPECT_NEAR(int(grey[(size_t(h / 2) * w + w / 2) * 4]), 178, 1);  // 100 + (255 - 100) / 2
+    // A stroke behind the camera (w <= 0) is skipped, not drawn mirrored.
+    glm::mat4 flip(1.0f);
+    flip[3][3] = -1.0f;
+    std::vector<uint8_t> clean(size_t(w) * h * 4, 0);
+    drawGlyphLines(clean, w, h, flip, lines);
+    EXPECT_EQ(std::count(clean.begin(), clean.end(), uint8_t(0)), std::ptrdiff_t(clean.size()));
+}
+
+// The glyph strokes: per cone an axis, a 32-segment aperture circle and two silhouettes, a start
+// dot where the nudge lies within the drawn length, and the apex's two dots.
+TEST(VCTConeGlyphs, StrokesPerCone) {
+    VCTSettings s;
+    s.coneSet = ConeSetKind::Six;
+    s.specularCone = false;
+    s.nudge = 1.0f;
+    std::vector<ConeGlyph> glyphs = vctConeGlyphs(s, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 5.0f}, 0.5f, 0.1f);
+    ASSERT_EQ(glyphs.size(), 6u);
+    std::vector<GlyphLine> lines = coneGlyphLines(glyphs, 1.2f);
+    EXPECT_EQ(lines.size(), 6u * (1 + 1 + 32 + 2) + 2);
+    // The aperture circle of the first cone (along the normal) has radius length * tan(30 deg).
+    const GlyphLine& rim = lines[2];
+    EXPECT_NEAR(glm::length(rim.a - glm::vec3(0.0f, 1.2f, 0.0f)), 1.2f * std::tan(glm::radians(30.0f)), 1e-4f);
+}
 
 TEST(VCTConeGlyphs, TangentFrameIsOrthonormalAroundTheNormal) {
     for (glm::vec3 n : {glm::vec3(0, 0, 1), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0), glm::normalize(glm::vec3(0.3f, -0.5f, -0.8f)),

@@ -56,11 +56,6 @@ bool projectToScreen(const glm::mat4& viewProj, const glm::vec3& p, ImVec2 displ
     return true;
 }
 
-const GLuint* viewTexture(const std::vector<DebugView>& views, const char* name) {
-    for (const DebugView& v : views)
-        if (v.name == name) return &v.texture;
-    return nullptr;
-}
 
 }  // namespace
 
@@ -311,30 +306,10 @@ void Editor::readConePick() {
     mPickPending = false;
     mPickGeneration = mSceneGeneration;
     // The point stays where it was picked while the camera moves, so its cones can be seen from the side.
-    std::vector<DebugView> views = mRenderer.debugViews();
-    const GLuint* depth = viewTexture(views, "depth");
-    const GLuint* normal = viewTexture(views, "normal");
-    const GLuint* material = viewTexture(views, "roughnessMetallic");
-    mPick.valid = false;
-    if (!depth || !normal || !material) return;
     glm::ivec2 size(mRenderer.width(), mRenderer.height());
-    glm::ivec2 px = glm::clamp(glm::ivec2(mPickUV * glm::vec2(size)), glm::ivec2(0), size - 1);
-    float d = 1.0f, n[4] = {}, m[4] = {};
-    glGetTextureSubImage(*depth, 0, px.x, px.y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof d, &d);
-    glGetTextureSubImage(*normal, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof n, n);
-    glGetTextureSubImage(*material, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof m, m);
-    mPick.pixel = px;
-    glm::vec3 nn(n[0], n[1], n[2]);
-    if (d >= 1.0f || glm::length(nn) < 1e-3f) return;  // the sky: no surface, no cones
-    // trace.comp's reconstruction of the pixel's position.
+    mPick.pixel = glm::clamp(glm::ivec2(mPickUV * glm::vec2(size)), glm::ivec2(0), size - 1);
     FrameSettings fs = frameSettings(mPreset, mScene, size.x, size.y);
-    glm::mat4 inv = glm::inverse(projectionMatrix(fs.camera, float(size.x) / float(size.y)) * viewMatrix(fs.camera));
-    glm::vec2 uv = (glm::vec2(px) + 0.5f) / glm::vec2(size);
-    glm::vec4 w = inv * glm::vec4(uv * 2.0f - 1.0f, d * 2.0f - 1.0f, 1.0f);
-    mPick.position = glm::vec3(w) / w.w;
-    mPick.normal = glm::normalize(nn);
-    mPick.roughness = m[0];
-    mPick.valid = true;
+    mPick.valid = pickSurface(mRenderer, fs.camera, mPick.pixel, mPick.surface);
 }
 
 void Editor::drawConeOverlay() {
@@ -344,46 +319,19 @@ void Editor::drawConeOverlay() {
     glm::mat4 viewProj = projectionMatrix(fs.camera, float(mWidth) / float(mHeight)) * viewMatrix(fs.camera);
     std::vector<VoxelBox> boxes = vctLevels(fs.vct, mScene.bounds.min, mScene.bounds.max, fs.camera.eye);
     float voxel = boxes.front().cellSize;
-    std::vector<ConeGlyph> glyphs = vctConeGlyphs(fs.vct, mPick.position, mPick.normal, fs.camera.eye, mPick.roughness, voxel);
-    float length = mConeLength * voxel, maxWeight = 0.0f;
-    for (const ConeGlyph& g : glyphs)
-        if (!g.specular) maxWeight = std::max(maxWeight, g.weight);
+    const SurfacePick& p = mPick.surface;
+    std::vector<ConeGlyph> glyphs = vctConeGlyphs(fs.vct, p.position, p.normal, fs.camera.eye, p.roughness, voxel);
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    auto line = [&](const glm::vec3& a, const glm::vec3& b, ImU32 colour, float thickness) {
+    for (const GlyphLine& l : coneGlyphLines(glyphs, mConeLength * voxel)) {
+        glm::vec4 c = glm::clamp(l.colour, 0.0f, 1.0f) * 255.0f;
+        ImU32 colour = IM_COL32(int(c.r), int(c.g), int(c.b), int(c.a));
         ImVec2 sa, sb;
-        if (projectToScreen(viewProj, a, display, sa) && projectToScreen(viewProj, b, display, sb))
-            draw->AddLine(sa, sb, colour, thickness);
-    };
-    for (const ConeGlyph& g : glyphs) {
-        // Heavier cones are drawn more opaque; the specular cone in orange.
-        int alpha = g.specular ? 230 : int(90.0f + 165.0f * (maxWeight > 0.0f ? g.weight / maxWeight : 1.0f));
-        ImU32 colour = g.specular ? IM_COL32(255, 150, 40, alpha) : IM_COL32(70, 230, 255, alpha);
-        glm::vec3 end = g.apex + g.direction * length;
-        line(g.apex, end, colour, 2.0f);
-        // The march's start after the nudge, where it lies within the drawn length.
-        ImVec2 s;
-        if (g.start < length && projectToScreen(viewProj, g.apex + g.direction * g.start, display, s))
-            draw->AddCircleFilled(s, 3.0f, colour);
-        // The aperture at the end: a circle across the axis, and two silhouette lines to it.
-        glm::mat3 frame = vctTangentFrame(g.direction);
-        float radius = length * g.tanHalf;
-        constexpr int kSegments = 32;
-        glm::vec3 previous = end + frame[0] * radius;
-        for (int i = 1; i <= kSegments; ++i) {
-            float a = 2.0f * glm::pi<float>() * float(i) / float(kSegments);
-            glm::vec3 q = end + (frame[0] * std::cos(a) + frame[1] * std::sin(a)) * radius;
-            line(previous, q, colour, 1.5f);
-            previous = q;
-        }
-        ImU32 faint = (colour & ~IM_COL32_A_MASK) | (ImU32(alpha / 3) << IM_COL32_A_SHIFT);
-        line(g.apex, end + frame[0] * radius, faint, 1.0f);
-        line(g.apex, end - frame[0] * radius, faint, 1.0f);
-    }
-    ImVec2 apex;
-    if (projectToScreen(viewProj, mPick.position, display, apex)) {
-        draw->AddCircleFilled(apex, 4.0f, IM_COL32(255, 255, 255, 230));
-        draw->AddCircle(apex, 4.0f, IM_COL32(0, 0, 0, 230), 0, 1.5f);
+        if (!projectToScreen(viewProj, l.a, display, sa) || !projectToScreen(viewProj, l.b, display, sb)) continue;
+        if (l.a == l.b)
+            draw->AddCircleFilled(sa, 0.5f * l.width, colour);
+        else
+            draw->AddLine(sa, sb, colour, l.width);
     }
 }
 
@@ -427,7 +375,8 @@ void Editor::vctPanel() {
         hintText("left click the viewport to pick");
         if (mPick.valid)
             ImGui::TextDisabled("pixel (%d, %d): n (%.2f, %.2f, %.2f), roughness %.2f", mPick.pixel.x, mPick.pixel.y,
-                                mPick.normal.x, mPick.normal.y, mPick.normal.z, mPick.roughness);
+                                mPick.surface.normal.x, mPick.surface.normal.y, mPick.surface.normal.z,
+                                mPick.surface.roughness);
         else
             ImGui::TextDisabled("pixel (%d, %d): no surface", mPick.pixel.x, mPick.pixel.y);
     }

@@ -71,8 +71,7 @@ private:
     struct ConePick {
         bool valid = false;
         glm::ivec2 pixel{0};
-        glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f};
-        float roughness = 1.0f;
+        SurfacePick surface;
     } mPick;
     uint64_t mPickGeneration = 0;   // mSceneGeneration the pick was read in
     std::string mLoadedScene;           // header.scene that mScene came from

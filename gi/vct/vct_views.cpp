@@ -1,6 +1,9 @@
 #include "gi/vct/vct_views.h"
 
+#include "gi/scene/camera.h"
 #include "gi/util/error.h"
+
+#include <glm/gtc/constants.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -185,6 +188,104 @@ std::vector<ConeGlyph> vctConeGlyphs(const VCTSettings& s, const glm::vec3& p, c
         glyphs.push_back(g);
     }
     return glyphs;
+}
+
+std::vector<GlyphLine> coneGlyphLines(const std::vector<ConeGlyph>& glyphs, float length) {
+    std::vector<GlyphLine> lines;
+    float maxWeight = 0.0f;
+    for (const ConeGlyph& g : glyphs)
+        if (!g.specular) maxWeight = std::max(maxWeight, g.weight);
+    for (const ConeGlyph& g : glyphs) {
+        float alpha = g.specular ? 0.9f : 0.35f + 0.65f * (maxWeight > 0.0f ? g.weight / maxWeight : 1.0f);
+        glm::vec4 colour = g.specular ? glm::vec4(1.0f, 0.59f, 0.16f, alpha) : glm::vec4(0.27f, 0.9f, 1.0f, alpha);
+        glm::vec3 end = g.apex + g.direction * length;
+        lines.push_back({g.apex, end, colour, 2.0f});
+        if (g.start < length) {
+            glm::vec3 s = g.apex + g.direction * g.start;
+            lines.push_back({s, s, colour, 6.0f});
+        }
+        glm::mat3 frame = vctTangentFrame(g.direction);
+        float radius = length * g.tanHalf;
+        constexpr int kSegments = 32;
+        glm::vec3 previous = end + frame[0] * radius;
+        for (int i = 1; i <= kSegments; ++i) {
+            float a = 2.0f * glm::pi<float>() * float(i) / float(kSegments);
+            glm::vec3 q = end + (frame[0] * std::cos(a) + frame[1] * std::sin(a)) * radius;
+            lines.push_back({previous, q, colour, 1.5f});
+            previous = q;
+        }
+        glm::vec4 faint(glm::vec3(colour), alpha / 3.0f);
+        lines.push_back({g.apex, end + frame[0] * radius, faint, 1.0f});
+        lines.push_back({g.apex, end - frame[0] * radius, faint, 1.0f});
+    }
+    if (!glyphs.empty()) {
+        lines.push_back({glyphs[0].apex, glyphs[0].apex, glm::vec4(0.0f, 0.0f, 0.0f, 0.9f), 11.0f});
+        lines.push_back({glyphs[0].apex, glyphs[0].apex, glm::vec4(1.0f, 1.0f, 1.0f, 0.9f), 8.0f});
+    }
+    return lines;
+}
+
+bool pickSurface(const Renderer& renderer, const CameraSettings& camera, glm::ivec2 px, SurfacePick& out) {
+    std::vector<DebugView> views = renderer.debugViews();
+    auto texture = [&](const char* name) -> GLuint {
+        for (const DebugView& v : views)
+            if (v.name == name) return v.texture;
+        return 0;
+    };
+    GLuint depth = texture("depth"), normal = texture("normal"), material = texture("roughnessMetallic");
+    glm::ivec2 size(renderer.width(), renderer.height());
+    if (!depth || !normal || !material || size.x <= 0 || size.y <= 0) return false;
+    px = glm::clamp(px, glm::ivec2(0), size - 1);
+    float d = 1.0f, n[4] = {}, m[4] = {};
+    glGetTextureSubImage(depth, 0, px.x, px.y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof d, &d);
+    glGetTextureSubImage(normal, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof n, n);
+    glGetTextureSubImage(material, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof m, m);
+    glm::vec3 nn(n[0], n[1], n[2]);
+    if (d >= 1.0f || glm::length(nn) < 1e-3f) return false;
+    glm::mat4 inv = glm::inverse(projectionMatrix(camera, float(size.x) / float(size.y)) * viewMatrix(camera));
+    glm::vec2 uv = (glm::vec2(px) + 0.5f) / glm::vec2(size);
+    glm::vec4 w = inv * glm::vec4(uv * 2.0f - 1.0f, d * 2.0f - 1.0f, 1.0f);
+    out.position = glm::vec3(w) / w.w;
+    out.normal = glm::normalize(nn);
+    out.roughness = m[0];
+    return true;
+}
+
+void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm::mat4& viewProj,
+                    const std::vector<GlyphLine>& lines) {
+    GI_ASSERT(rgba.size() >= size_t(width) * height * 4, "drawGlyphLines: image too small");
+    // Pixel coordinates with y up (row 0 at the bottom, as the image is stored).
+    auto project = [&](const glm::vec3& p, glm::vec2& out) {
+        glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+        if (c.w <= 1e-4f) return false;
+        out = (glm::vec2(c) / c.w * 0.5f + 0.5f) * glm::vec2(width, height);
+        return true;
+    };
+    auto blend = [&](int x, int y, const glm::vec4& c, float coverage) {
+        if (x < 0 || y < 0 || x >= width || y >= height || coverage <= 0.0f) return;
+        uint8_t* p = &rgba[(size_t(y) * width + x) * 4];
+        float a = c.a * std::min(coverage, 1.0f);
+        for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(float(p[k]) * (1.0f - a) + 255.0f * c[k] * a));
+    };
+    for (const GlyphLine& l : lines) {
+        glm::vec2 a, b;
+        if (!project(l.a, a) || !project(l.b, b)) continue;
+        // Coverage by distance to the segment: 1 within half the width, fading over one pixel.
+        float r = 0.5f * l.width;
+        // (clamped as floats first: a point near the camera plane projects far out)
+        glm::vec2 top(float(width - 1), float(height - 1));
+        glm::ivec2 lo(glm::clamp(glm::floor(glm::min(a, b) - r - 1.0f), glm::vec2(0.0f), top));
+        glm::ivec2 hi(glm::clamp(glm::ceil(glm::max(a, b) + r + 1.0f), glm::vec2(0.0f), top));
+        glm::vec2 ab = b - a;
+        float len2 = glm::dot(ab, ab);
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x) {
+                glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+                float t = len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+                float d = glm::length(p - (a + t * ab));
+                blend(x, y, l.colour, r + 0.5f - d);
+            }
+    }
 }
 
 }  // namespace gi
