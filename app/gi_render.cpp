@@ -12,6 +12,7 @@
 #include "gi/util/paths.h"
 #include "gi/scene/camera.h"
 #include "gi/vct/vct_views.h"
+#include "gi/volumetric/phase_plot.h"
 
 #include <CLI/CLI.hpp>
 
@@ -183,6 +184,12 @@ int run(int argc, char** argv) {
                 gi::drawGlyphLines(image, width, height, vp.viewProj, gi::coneGlyphLines(glyphs, 12.0f * voxel));
                 gi::writePNG(out / "views" / "vct.cones.png", width, height, image);
             }
+        }
+        if (frame.volumetric.enabled) {
+            // The phase function as a polar plot (linear), light travelling along +x.
+            const int plotSize = 256;
+            gi::writePNG(out / "views" / "volumetric.phase.png", plotSize, plotSize,
+                         gi::phasePlotImage(gi::phaseParams(frame.volumetric), plotSize, false));
         }
     }
     if (reference || score) {

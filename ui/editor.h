@@ -29,6 +29,7 @@ struct EditorOptions {
     std::string voxelView;         // VCT: albedo, normal, emission or radiance shows that voxel view in the viewport
     bool voxelWindow = false;      // the voxel view in its own window instead of the viewport
     bool coneOverlay = true;       // VCT: the cone set at the picked pixel (at first the centre) over the viewport
+    bool phasePlot = false;        // the Phase function window open from the start (it also opens when volumetric is on)
 };
 
 class Editor {
@@ -74,6 +75,12 @@ private:
         SurfacePick surface;
     } mPick;
     uint64_t mPickGeneration = 0;   // mSceneGeneration the pick was read in
+    // Volumetric: the phase function's polar plot (phaseWindow), opened whenever volumetric
+    // lighting is switched on (and at start when the preset has it on).
+    bool mShowPhase = false;
+    bool mPhaseLog = false;         // the plot's radius on the log scale of gi/volumetric/phase_plot.h
+    bool mPhaseOthers = true;       // the other five functions as faint curves
+    bool mVolumetricWasOn = false;  // volumetric.enabled last frame
     std::string mLoadedScene;           // header.scene that mScene came from
     Scene mScene;
     Renderer mRenderer;
@@ -112,6 +119,8 @@ private:
     void drawCascadeOverlay();
     void vctPanel();
     void voxelWindow();
+    void volumetricPanel();
+    void phaseWindow();
     std::vector<VoxelGridView> voxelGrids(const FrameSettings& fs) const;
     void readConePick();
     void drawConeOverlay();

@@ -206,6 +206,7 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
     fs.lpv = p.lpv;
     fs.vct = p.vct;
     fs.ssao = p.ssao;
+    fs.volumetric = p.volumetric;
     fs.width = width;
     fs.height = height;
     return fs;

@@ -50,6 +50,7 @@ struct Preset {
     LPVSettings lpv;
     VCTSettings vct;
     SSAOSettings ssao;
+    VolumetricSettings volumetric;
     ReferenceSettings reference;
     QualitySettings quality;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)
@@ -63,6 +64,7 @@ struct Preset {
         f(lpv);
         f(vct);
         f(ssao);
+        f(volumetric);
         f(reference);
         f(quality);
     }

@@ -4,6 +4,7 @@
 
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
+#include "gi/volumetric/medium.h"
 
 #include <embree3/rtcore.h>
 #include <glm/gtc/constants.hpp>
@@ -387,16 +388,20 @@ struct PathTracer::Impl {
         return E * atten;
     }
 
+    // Radiance along the ray o + t d (t > tnear); `firstHit` gets the distance to the first
+    // surface, infinity when the ray escapes.
     glm::vec3 radiance(glm::vec3 o, glm::vec3 d, float tnear, const FrameSettings& fs, const ReferenceSettings& rs,
-                       PCG32& rng, uint64_t& rays) const {
+                       PCG32& rng, uint64_t& rays, float& firstHit) const {
         const bool countDirect = rs.mode != ReferenceMode::Indirect;
         const bool countIndirect = rs.mode != ReferenceMode::Direct;
         glm::vec3 L(0.0f), beta(1.0f);
         float prevPdf = 0.0f;
+        firstHit = std::numeric_limits<float>::infinity();
         for (int bounce = 0;; ++bounce) {
             Hit h = intersect(o, d, tnear, std::numeric_limits<float>::infinity());
             ++rays;
             if (!h.valid) break;
+            if (bounce == 0) firstHit = h.t;
             tnear = 0.0f;
             glm::vec3 P = o + d * h.t;
             const Material& m = scene.materials[h.material];
@@ -466,6 +471,39 @@ struct PathTracer::Impl {
         return L;
     }
 
+    // The camera ray's passage through the medium (gi/volumetric/medium.h): the radiance Ls
+    // from the first surface on (hit at tHit, infinity for a miss) faded by T(eye, hit), plus
+    // single scattering of each punctual light, one uniform distance per light on the lit part
+    // of the ray inside the box. d is a unit vector.
+    glm::vec3 throughMedium(const Medium& medium, const glm::vec3& eye, const glm::vec3& d, float tHit, const glm::vec3& Ls,
+                            const FrameSettings& fs, const ReferenceSettings& rs, PCG32& rng, uint64_t& rays) const {
+        float tEnter, tExit;
+        if (!clipRayToBox(medium.box, eye, d, tHit, tEnter, tExit)) return Ls;
+        glm::vec3 L = medium.attenuateScene ? Ls * medium.transmittance(tExit - tEnter) : Ls;
+        // In-scattering is single scattering of direct light: not part of the indirect mode.
+        if (rs.mode == ReferenceMode::Indirect) return L;
+        for (const LightSettings& light : fs.lights) {
+            float t0 = tEnter, t1 = tExit;
+            if (!clipRayToLight(light, eye, d, t0, t1)) continue;
+            float t = t0 + rng.uniform() * (t1 - t0);
+            glm::vec3 x = eye + t * d;
+            glm::vec3 Ldir;
+            float dist;
+            glm::vec3 Li = punctual(light, x, Ldir, dist);
+            if (maxComponent(Li) <= 0.0f) continue;
+            ++rays;
+            float tfar = std::isinf(dist) ? dist : dist * (1.0f - 1e-4f);
+            if (light.castShadows && occluded(x, Ldir, tfar)) continue;
+            // theta lies between the light's direction of travel (-Ldir) and the way to the eye (-d).
+            float cosTheta = glm::dot(Ldir, d);
+            float Tlight = medium.transmittance(lightPathInBox(medium.box, light, x));
+            float Tview = medium.transmittance(t - tEnter);
+            float weight = medium.intensity * medium.sigmaS * float(phase(medium.phase, cosTheta)) * Tlight * Tview * (t1 - t0);
+            L += weight * Li;
+        }
+        return L;
+    }
+
     glm::vec3 sampleEmitter(const glm::vec3& P, const glm::vec3& Po, const glm::vec3& Ns, const glm::vec3& Ng,
                             const BSDF& bsdf, PCG32& rng, uint64_t& rays) const {
         float u = rng.uniform();
@@ -508,6 +546,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
     const glm::mat4 view = viewMatrix(fs.camera);
     const glm::mat4 invViewProj = glm::inverse(projectionMatrix(fs.camera, float(w) / float(h)) * view);
     const glm::vec3 forward = -glm::vec3(glm::inverse(view)[2]);
+    const Medium medium = makeMedium(fs.volumetric, mImpl->scene.bounds);
     std::atomic<bool> cancelled{false};
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
         if (cancel && cancel->load()) {
@@ -527,7 +566,10 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
                     glm::vec4 pf = invViewProj * glm::vec4(ndc, 1.0f, 1.0f);
                     glm::vec3 dir = glm::normalize(glm::vec3(pf) / pf.w - glm::vec3(pn) / pn.w);
                     float tnear = fs.camera.near / std::max(glm::dot(dir, forward), 1e-4f);
-                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, rng, rays);
+                    float tHit;
+                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, rng, rays, tHit);
+                    // After the path, so the path's random numbers do not depend on the medium.
+                    if (medium.active) L = mImpl->throughMedium(medium, fs.camera.eye, dir, tHit, L, fs, rs, rng, rays);
                     if (std::isfinite(L.x + L.y + L.z)) acc += glm::dvec3(L);
                 }
                 sum[pixel * 3] += acc.x;

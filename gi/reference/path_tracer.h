@@ -19,6 +19,17 @@
 //   - Deterministic: each pixel sample draws from a PCG32 stream keyed by (pixel, sample, seed),
 //     so the image depends on neither thread count nor how samples are split into passes.
 //   - Pixel filter: a box over the pixel (uniform jitter).
+//   - Volumetric lighting (seed 004; the model is gi/volumetric/medium.h, shared with the raster
+//     march): a homogeneous medium filling the scene's bounds acts on the camera ray only. The
+//     radiance of the path from its first surface on (emission seen directly included) is faded
+//     by T(eye, hit) when attenuateScene is on, and single scattering of each punctual light is
+//     added: one distance per light, uniform on the part of the camera ray inside the box and
+//     the light's cone and range, with a shadow ray as in next-event estimation, the light's
+//     falloff, T along the light's path inside the box and T back to where the ray entered the
+//     box. It is direct light: counted in full and direct, not indirect. As in the raster
+//     technique, light reaching surfaces (and every later path segment) is not attenuated, and
+//     there is no multiple scattering. Its random numbers are drawn after the path's, so the
+//     surface paths are the same with and without the medium.
 // Known limits: no refraction (glass is a dark dielectric, as in the scene files), no textures
 // besides base colour, textures sampled bilinearly at full resolution (no mips).
 #pragma once

@@ -72,6 +72,8 @@ uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const Referen
     h.value(fs.width);
     h.value(fs.height);
     h.value(fs.render.specular);
+    // Only when on, so the references cached before volumetric lighting existed keep their keys.
+    if (fs.volumetric.enabled) h.text(toJson(fs.volumetric).dump());
     return h.result();
 }
 

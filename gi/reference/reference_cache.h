@@ -1,8 +1,9 @@
 // A cache of path-traced references, so tests and the editor pay for each one once. The key is
 // a hash of everything that determines the image: the scene's contents (vertices, indices,
 // materials, texture pixels, whatever file they came from), the resolved camera and lights,
-// the image size, the specular switch, every reference setting, and kReferenceVersion (bumped
-// whenever the path tracer's output changes). Files are float EXRs written atomically.
+// the image size, the specular switch, every reference setting, the volumetric settings when
+// volumetric lighting is enabled, and kReferenceVersion (bumped whenever the path tracer's
+// output changes). Files are float EXRs written atomically.
 #pragma once
 
 #include "gi/reference/path_tracer.h"

@@ -7,6 +7,7 @@
 #include "gi/scene/scene_settings.h"
 #include "gi/ssao/ssao_settings.h"
 #include "gi/vct/vct_settings.h"
+#include "gi/volumetric/volumetric_settings.h"
 
 #include <vector>
 
@@ -75,6 +76,7 @@ struct FrameSettings {
     LPVSettings lpv;
     VCTSettings vct;
     SSAOSettings ssao;
+    VolumetricSettings volumetric;
     int width = 640;
     int height = 360;
 };

@@ -117,6 +117,7 @@ size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
         if (l.castShadows) bytes += face * (l.type == LightType::Point ? 6 : 1);
     bytes += techniqueBytes(fs);
     bytes += SSAO::estimateBytes(fs.width, fs.height);
+    bytes += Volumetric::estimateBytes(fs);
     return bytes;
 }
 
@@ -230,6 +231,9 @@ void Renderer::render(const FrameSettings& fs) {
     renderIndirect(fs, view, proj);
     mSSAO.execute(fs.ssao, mDepth.id(), mNormal.id(), mWidth, mHeight, view, proj, mTimer);
     renderLighting(fs, viewProj);
+    mVolumetric.execute({fs, mScene->bounds(), mShadowViews, mDepth.id(), mHDR.id(), mWidth, mHeight, glm::inverse(viewProj),
+                         float(mShadowSize)},
+                        mTimer);
     renderToneMap(fs);
     mTimer.endFrame();
     mTimer.resolve(false);
@@ -339,12 +343,12 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
 void Renderer::renderIndirect(const FrameSettings& fs, const glm::mat4& view, const glm::mat4& proj) {
     const glm::vec4 zero(0.0f);
     glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
+    // The shadow maps as the technique and the volumetric pass read them.
+    mShadowViews.assign(fs.lights.size(), ShadowMapView{});
+    for (size_t i = 0; i < fs.lights.size(); ++i)
+        if (fs.lights[i].castShadows)
+            mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mShadows[i].viewProj, mShadows[i].far};
     if (mTechnique) {
-        mShadowViews.assign(fs.lights.size(), ShadowMapView{});
-        for (size_t i = 0; i < fs.lights.size(); ++i)
-            if (fs.lights[i].castShadows)
-                mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mShadows[i].viewProj,
-                                   mShadows[i].far};
         FrameContext ctx{fs,         *mScene,      view,           proj,          proj * view,
                          glm::inverse(proj * view), mAlbedo.id(), mNormal.id(), mMaterial.id(), mDepth.id(),
                          mIndirect.id(),            mIndirectSpecular.id(),     mShadowViews,  mWidth,
@@ -446,6 +450,7 @@ bool Renderer::reloadShaders(std::string& log) {
     log.clear();
     if (mTechnique && !mTechnique->reloadShaders(log)) ok = false;
     if (!mSSAO.reloadShaders(log)) ok = false;
+    if (!mVolumetric.reloadShaders(log)) ok = false;
     for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
@@ -474,6 +479,7 @@ std::vector<DebugView> Renderer::debugViews() const {
     if (mTechnique)
         for (DebugView& tv : mTechnique->debugViews()) v.push_back(tv);
     for (DebugView& sv : mSSAO.debugViews()) v.push_back(sv);
+    for (DebugView& vv : mVolumetric.debugViews()) v.push_back(vv);
     for (size_t i = 0; i < mShadows.size(); ++i) {
         if (!mShadows[i].depth) continue;
         std::string name = "shadow" + std::to_string(i);
@@ -500,6 +506,7 @@ std::vector<PassStats> Renderer::passStats() const {
         else if (r.name == "lighting") bytes = mHDR.bytes();
         else if (r.name == "tonemap") bytes = mLDR.bytes();
         else if (r.name == "ssao") bytes = mSSAO.memoryBytes();  // both AO targets; the blur pass holds none
+        else if (r.name == "volumetric.march") bytes = mVolumetric.memoryBytes();  // both buffers
         else if (mTechnique) bytes = mTechnique->passMemory(r.name);
         out.push_back({r.name, r.gpuMs, bytes});
     }
@@ -510,6 +517,7 @@ size_t Renderer::memoryBytes() const {
     size_t total = mScene ? mScene->memoryBytes() : 0;
     if (mTechnique) total += mTechnique->memoryBytes();
     total += mSSAO.memoryBytes();
+    total += mVolumetric.memoryBytes();
     for (auto& s : mShadows) total += s.depth.bytes();
     for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mIndirectSpecular, &mHDR, &mLDR})
         total += t->bytes();

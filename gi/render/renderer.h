@@ -19,6 +19,7 @@
 #include "gi/scene/camera.h"
 #include "gi/scene/scene.h"
 #include "gi/ssao/ssao.h"
+#include "gi/volumetric/volumetric.h"
 
 #include <memory>
 #include <span>
@@ -164,6 +165,7 @@ private:
     gl::GpuTimer mTimer;
     std::unique_ptr<Technique> mTechnique;
     SSAO mSSAO;
+    Volumetric mVolumetric;
     TechniqueKind mTechniqueKind = TechniqueKind::None;
 
     void resize(int width, int height);

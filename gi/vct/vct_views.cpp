@@ -1,5 +1,6 @@
 #include "gi/vct/vct_views.h"
 
+#include "gi/render/strokes.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 
@@ -261,31 +262,16 @@ void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm
         out = (glm::vec2(c) / c.w * 0.5f + 0.5f) * glm::vec2(width, height);
         return true;
     };
-    auto blend = [&](int x, int y, const glm::vec4& c, float coverage) {
-        if (x < 0 || y < 0 || x >= width || y >= height || coverage <= 0.0f) return;
-        uint8_t* p = &rgba[(size_t(y) * width + x) * 4];
-        float a = c.a * std::min(coverage, 1.0f);
-        for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lround(float(p[k]) * (1.0f - a) + 255.0f * c[k] * a));
-    };
+    std::vector<Stroke> strokes;
+    strokes.reserve(lines.size());
     for (const GlyphLine& l : lines) {
-        glm::vec2 a, b;
-        if (!project(l.a, a) || !project(l.b, b)) continue;
-        // Coverage by distance to the segment: 1 within half the width, fading over one pixel.
-        float r = 0.5f * l.width;
-        // (clamped as floats first: a point near the camera plane projects far out)
-        glm::vec2 top(float(width - 1), float(height - 1));
-        glm::ivec2 lo(glm::clamp(glm::floor(glm::min(a, b) - r - 1.0f), glm::vec2(0.0f), top));
-        glm::ivec2 hi(glm::clamp(glm::ceil(glm::max(a, b) + r + 1.0f), glm::vec2(0.0f), top));
-        glm::vec2 ab = b - a;
-        float len2 = glm::dot(ab, ab);
-        for (int y = lo.y; y <= hi.y; ++y)
-            for (int x = lo.x; x <= hi.x; ++x) {
-                glm::vec2 p(float(x) + 0.5f, float(y) + 0.5f);
-                float t = len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
-                float d = glm::length(p - (a + t * ab));
-                blend(x, y, l.colour, r + 0.5f - d);
-            }
+        Stroke s;
+        if (!project(l.a, s.a) || !project(l.b, s.b)) continue;
+        s.colour = l.colour;
+        s.width = l.width;
+        strokes.push_back(s);
     }
+    drawStrokes(rgba, width, height, strokes);
 }
 
 }  // namespace gi

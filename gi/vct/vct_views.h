@@ -132,7 +132,8 @@ struct SurfacePick {
 bool pickSurface(const Renderer& renderer, const CameraSettings& camera, glm::ivec2 px, SurfacePick& out);
 
 // Draws the strokes over an RGBA8 image (bottom row first, as GL reads it back) seen through
-// viewProj; alpha-blended, strokes behind the camera skipped.
+// viewProj; alpha-blended, strokes behind the camera skipped. The projected strokes are drawn by
+// gi/render/strokes.h's drawStrokes.
 void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm::mat4& viewProj,
                     const std::vector<GlyphLine>& lines);
 

@@ -1,0 +1,117 @@
+// Volumetric lighting, per pixel of the march buffer (seed 004 Alg. 5, with gi/volumetric/medium.h's
+// model): the view ray to the surface (or out of the box) is clipped to the medium's box and,
+// per light, to the light's cone and range (the seed clips to the spot pyramid; a cone is tighter
+// and also covers point lights' range); `samples` points spread evenly over the clipped segment,
+// offset by a fixed per-pixel hash; each tested against the light's shadow map (3x3 compared taps
+// with PCF); unlit samples skip the rest; lit ones add sigma_s p(theta) Li T_light T_view dt.
+// Up to kVolumeMaxLights lights per dispatch; later dispatches add to the buffer.
+// Output: rgb in-scattered radiance, a = the view distance to the surface (for the depth-aware blur).
+#include "volumetric/medium.glsl"
+#include "volumetric/phase.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = kUnitDepth) uniform sampler2D uDepth;
+layout(binding = 0, rgba16f) uniform image2D uOut;
+
+const int kVolumeMaxLights = 4;
+layout(binding = 9) uniform sampler2DShadow uShadow2D[kVolumeMaxLights];
+layout(binding = 13) uniform samplerCubeShadow uShadowCube[kVolumeMaxLights];
+
+uniform mat4 uInvViewProj;
+uniform vec3 uEye;
+uniform ivec2 uSize;      // march buffer
+uniform ivec2 uFullSize;  // the depth buffer
+uniform vec2 uToFull;
+uniform bool uAccumulate;
+uniform int uSamples;
+uniform bool uJitter;
+uniform bool uPCF;
+uniform int uPhase;
+uniform float uG;
+uniform float uK;
+uniform float uIntensity;
+uniform int uLightCount;
+uniform int uLightType[kVolumeMaxLights];
+uniform vec3 uLightColor[kVolumeMaxLights];  // color * intensity
+uniform vec3 uLightPos[kVolumeMaxLights];
+uniform vec3 uLightDir[kVolumeMaxLights];    // unit, the direction the light travels
+uniform float uLightRange[kVolumeMaxLights];
+uniform vec2 uLightCos[kVolumeMaxLights];    // cos inner, cos outer
+uniform int uShadowed[kVolumeMaxLights];
+uniform mat4 uShadowViewProj[kVolumeMaxLights];
+uniform float uShadowFar[kVolumeMaxLights];
+uniform float uShadowSize;
+
+float visibility(int i, vec3 x) {
+    if (uShadowed[i] == 0) return 1.0;
+    if (uLightType[i] == kLightPoint) {
+        vec3 d = x - uLightPos[i];
+        return texture(uShadowCube[i], vec4(normalize(d), length(d) / uShadowFar[i]));
+    }
+    vec4 c = uShadowViewProj[i] * vec4(x, 1.0);
+    vec3 tc = c.xyz / c.w * 0.5 + 0.5;
+    if (any(lessThan(tc.xy, vec2(0.0))) || any(greaterThan(tc.xy, vec2(1.0))) || tc.z > 1.0) return 1.0;
+    if (!uPCF) return texture(uShadow2D[i], tc);
+    float sum = 0.0;
+    for (int y = -1; y <= 1; ++y)
+        for (int xx = -1; xx <= 1; ++xx) sum += texture(uShadow2D[i], vec3(tc.xy + vec2(xx, y) / uShadowSize, tc.z));
+    return sum / 9.0;
+}
+
+void main() {
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(q, uSize))) return;
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * uToFull), uFullSize - 1);
+    float depth = texelFetch(uDepth, px, 0).r;
+    vec2 uv = (vec2(px) + 0.5) / vec2(uFullSize);
+    vec4 w = uInvViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec3 p = w.xyz / w.w;
+    vec3 d = normalize(p - uEye);
+    float tHit = depth < 1.0 ? length(p - uEye) : 1e30;
+    vec3 L = vec3(0.0);
+    float b0, b1;
+    if (clipRayToBox(uEye, d, tHit, b0, b1)) {
+        // Interleaved gradient noise (Jimenez 2014): fixed per pixel, so headless renders repeat.
+        float jitter = uJitter ? fract(52.9829189 * fract(dot(vec2(q), vec2(0.06711056, 0.00583715)))) : 0.5;
+        for (int i = 0; i < uLightCount; ++i) {
+            float t0 = b0, t1 = b1;
+            if (!clipRayToLight(uLightType[i], uLightPos[i], uLightDir[i], uLightRange[i], uLightCos[i].y, uEye, d, t0, t1))
+                continue;
+            float dt = (t1 - t0) / float(uSamples);
+            vec3 sum = vec3(0.0);
+            for (int s = 0; s < uSamples; ++s) {
+                float t = t0 + (float(s) + jitter) * dt;
+                vec3 x = uEye + t * d;
+                float vis = visibility(i, x);
+                if (vis <= 0.0) continue;  // unlit: skip the rest (seed 004 Fig. 3.19)
+                vec3 toLight, travel;
+                float dist, atten = 1.0;
+                if (uLightType[i] == kLightDirectional) {
+                    toLight = -uLightDir[i];
+                    travel = uLightDir[i];
+                    dist = 1e30;
+                } else {
+                    vec3 v = uLightPos[i] - x;
+                    dist = length(v);
+                    toLight = v / max(dist, 1e-6);
+                    travel = -toLight;
+                    atten = 1.0 / max(dist * dist, 1e-8);
+                    if (uLightRange[i] > 0.0) {
+                        float r = dist / uLightRange[i];
+                        float f = clamp(1.0 - r * r * r * r, 0.0, 1.0);
+                        atten *= f * f;
+                    }
+                    if (uLightType[i] == kLightSpot) atten *= smoothstep(uLightCos[i].y, uLightCos[i].x, dot(travel, uLightDir[i]));
+                }
+                float tLight = exp(-uSigmaT * lightPathInBox(x, toLight, dist));
+                float tView = exp(-uSigmaT * (t - b0));
+                sum += vis * atten * tLight * tView * phaseFunction(uPhase, uG, uK, dot(travel, -d)) * uLightColor[i];
+            }
+            L += sum * (uSigmaS * dt);
+        }
+    }
+    L *= uIntensity;
+    float viewDistance = depth < 1.0 ? tHit : 65504.0;
+    if (uAccumulate) L += imageLoad(uOut, q).rgb;
+    imageStore(uOut, q, vec4(L, viewDistance));
+}
