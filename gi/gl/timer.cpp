@@ -2,7 +2,13 @@
 
 #include "gi/util/error.h"
 
+#include <chrono>
+
 namespace gi::gl {
+
+namespace {
+double nowMs() { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+}  // namespace
 
 GLuint GpuTimer::nextQuery(Frame& f) {
     if (f.used == f.pool.size()) {
@@ -22,16 +28,21 @@ void GpuTimer::beginFrame() {
 
 void GpuTimer::begin(const char* name) {
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name);
+    if (mSerialize) glFinish();
     Frame& f = mFrames[mCurrent];
     GLuint q = nextQuery(f);
     glQueryCounter(q, GL_TIMESTAMP);
-    f.entries.push_back({name, q, 0});
+    f.entries.push_back({name, q, 0, mSerialize ? nowMs() : 0.0, 0.0});
     mOpen.push_back(f.entries.size() - 1);
 }
 
 void GpuTimer::end() {
     GI_ASSERT(!mOpen.empty(), "GpuTimer::end without begin");
     Frame& f = mFrames[mCurrent];
+    if (mSerialize) {
+        glFinish();
+        f.entries[mOpen.back()].cpuEnd = nowMs();
+    }
     GLuint q = nextQuery(f);
     glQueryCounter(q, GL_TIMESTAMP);
     f.entries[mOpen.back()].end = q;
@@ -57,7 +68,9 @@ bool GpuTimer::read(Frame& f, bool wait) {
         GLuint64 t0 = 0, t1 = 0;
         glGetQueryObjectui64v(e.begin, GL_QUERY_RESULT, &t0);
         glGetQueryObjectui64v(e.end, GL_QUERY_RESULT, &t1);
-        out.push_back({e.name, t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0});
+        double ms = t1 > t0 ? double(t1 - t0) * 1e-6 : 0.0;
+        if (mSerialize) ms = e.cpuEnd - e.cpuBegin;
+        out.push_back({e.name, ms});
     }
     f.pending = false;
     mResults = std::move(out);

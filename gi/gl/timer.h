@@ -24,6 +24,14 @@ public:
     // Reads the newest finished frame. With wait, blocks until the frame just ended is done.
     void resolve(bool wait);
     const std::vector<PassTime>& results() const { return mResults; }
+    // Serialised timing: finish all GL work at every pass boundary and read the CPU clock there
+    // instead of GL timestamps. On llvmpipe timestamp pairs do not bracket the work reliably:
+    // draws are rasterised when the scene is flushed, so a raster pass's end stamp can land after
+    // the compute passes that follow it (a 8.4 s volumetric march was counted under "lighting"),
+    // and after the first frame a 9 s march read 0.1 ms between its stamps even with glFinish
+    // around them. All llvmpipe work runs on the CPU, so finish + wall clock is its true cost.
+    // The Renderer turns this on for software renderers; on a GPU it would stall the pipeline.
+    void setSerialize(bool on) { mSerialize = on; }
     double totalMs() const;
 
     class Scope {
@@ -42,6 +50,7 @@ private:
     struct Entry {
         std::string name;
         GLuint begin, end;
+        double cpuBegin = 0.0, cpuEnd = 0.0;  // ms, serialised timing
     };
     struct Frame {
         std::vector<Entry> entries;
@@ -53,6 +62,7 @@ private:
     int mCurrent = 0;
     std::vector<size_t> mOpen;
     std::vector<PassTime> mResults;
+    bool mSerialize = false;
 
     GLuint nextQuery(Frame& f);
     bool read(Frame& f, bool wait);

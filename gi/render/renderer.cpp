@@ -92,6 +92,9 @@ Renderer::Renderer()
     mShadowSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, true);
     mMaterialSampler = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
     glSamplerParameterf(mMaterialSampler.id(), GL_TEXTURE_MAX_ANISOTROPY, 4.0f);
+    // Software rasterisers defer draws: serialise the pass timers there (gi/gl/timer.h).
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    mTimer.setSerialize(renderer && std::string(renderer).find("llvmpipe") != std::string::npos);
     mWhite = gl::Texture::create2D(GL_RGBA8, 1, 1);
     const uint8_t white[4] = {255, 255, 255, 255};
     glTextureSubImage2D(mWhite.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
