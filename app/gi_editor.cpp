@@ -34,6 +34,8 @@ int run(int argc, char** argv) {
     app.add_flag("--no-cones", noCones, "VCT: do not draw the cone set at the picked pixel (at first the centre)");
     app.add_flag("--phase-plot", options.phasePlot,
                  "Open the Phase function window (the volumetric phase function as a polar plot) from the start");
+    app.add_flag("--mips-panel", options.roughnessMips,
+                 "Open the environment settings' Roughness mips panel (the prefiltered chain and a preview of one mip) from the start");
     app.add_option("--reference", options.reference, "Start the Reference panel in this view")
         ->check(CLI::IsMember({"live", "reference", "toggle", "split", "heat"}));
     app.add_option("--reference-spp", options.referenceSPP, "Samples per pixel of the reference (overrides reference.spp)")

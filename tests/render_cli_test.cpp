@@ -40,10 +40,12 @@ TEST(RenderCLI, EveryShippedPresetRenders) {
         }
         for (const char* pass : {"shadows", "gbuffer", "ssao", "lighting", "tonemap"})
             EXPECT_TRUE(names.count(pass)) << entry.path() << " has no pass " << pass;
-        // The indirect term comes from the technique's passes, or the constant fill for none.
+        // The indirect term comes from the technique's passes, or for none the environment map
+        // (when enabled) or the constant fill.
         std::string technique = stats["settings"]["technique"];
+        bool environment = stats["settings"].contains("environment") && stats["settings"]["environment"]["enabled"].get<bool>();
         if (technique == "none") {
-            EXPECT_TRUE(names.count("indirect")) << entry.path();
+            EXPECT_TRUE(names.count(environment ? "environment.shade" : "indirect")) << entry.path();
         } else if (technique == "lpv") {
             for (const char* pass : {"lpv.rsm", "lpv.inject", "lpv.geometry", "lpv.propagate", "lpv.shade"})
                 EXPECT_TRUE(names.count(pass)) << entry.path() << " has no pass " << pass;

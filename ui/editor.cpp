@@ -1,5 +1,6 @@
 #include "ui/editor.h"
 
+#include "common/shared.h"
 #include "gi/lpv/lpv.h"
 #include "gi/scene/camera.h"
 
@@ -18,6 +19,7 @@
 #include <cctype>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <type_traits>
 
 namespace fs = std::filesystem;
@@ -77,6 +79,8 @@ Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(
     }
     mShowCones = options.coneOverlay;
     mShowPhase = options.phasePlot;
+    mOpenMips = options.roughnessMips;
+    mScrollToMips = mOpenMips ? 10 : 0;
     fs::path defaultFile = presetDir() / "default.json";
     bool isPreset = true;
     if (!options.preset.empty()) {
@@ -415,6 +419,190 @@ void Editor::volumetricPanel() {
     ImGui::Checkbox("phase function window", &mShowPhase);
 }
 
+uint8_t Editor::roughnessMipsPanel() {
+    if (mOpenMips) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    bool open = ImGui::TreeNodeEx("Roughness mips", ImGuiTreeNodeFlags_Framed);
+    if (mScrollToMips > 0) {
+        // Started with --mips-panel: keep the panel at the top of the window until the layout settles.
+        ImGui::SetScrollHereY(0.0f);
+        --mScrollToMips;
+    }
+    if (!open) return 0;
+    EnvironmentSettings& s = mPreset.environment;
+    const Environment& env = mRenderer.environment();
+    // The change tag comes from the settings table, as for every other edit.
+    Cost tableCost = Cost::Reallocate;
+    s.visit([&](auto&, const FieldMeta& m) {
+        if (std::string_view(m.key) == "mipRoughness") tableCost = m.cost;
+    });
+    uint8_t cost = 0;
+
+    if (!s.enabled) {
+        hintText("environment lighting is off (environment.enabled): no mip chain is built; the table below is what one would hold");
+    } else if (!env.ready()) {
+        wrappedText(kErrorColor, "the environment map did not load" + (mFrameError.empty() ? std::string(" (see the message above)")
+                                                                                          : ": " + mFrameError));
+    } else if (!mFrameError.empty() && lowercase(mFrameError).find("environment") != std::string::npos) {
+        wrappedText(kErrorColor, "the last change failed, the chain shown is the previous one: " + mFrameError);
+    }
+
+    // A cube of cubeSize has 1 + log2(cubeSize) mips, at most 32 (what the shading pass reads).
+    // A longer table keeps its first entries and puts its last on the last mip (as
+    // gi/envmap/environment.h says): the mip each entry feeds, -1 for a skipped entry.
+    const int fit = std::min(1 + int(std::floor(std::log2(double(std::max(s.cubeSize, 1))))), 32);
+    std::vector<float>& table = s.mipRoughness;
+    auto mipOf = [&](int entry) {
+        const int n = int(table.size());
+        if (n <= fit || entry < fit - 1) return entry;
+        return entry == n - 1 ? fit - 1 : -1;
+    };
+    const bool cone = s.distribution == PrefilterDistribution::BeckmannCone;
+    const std::vector<Environment::MipInfo> built = env.ready() ? env.mips() : std::vector<Environment::MipInfo>{};
+    const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingStretchProp;
+    if (ImGui::BeginTable("mips", 6, flags)) {
+        ImGui::TableSetupColumn("mip", ImGuiTableColumnFlags_WidthFixed);
+        ImGui::TableSetupColumn("roughness", ImGuiTableColumnFlags_WidthStretch, 2.2f);
+        ImGui::TableSetupColumn("face", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableSetupColumn("spp", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableSetupColumn("disk", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableSetupColumn("ms", ImGuiTableColumnFlags_WidthStretch, 1.1f);
+        static const char* const tips[6] = {"the mip the entry feeds (click: preview it)",
+                                            "perceptual roughness (settings: environment.mipRoughness)",
+                                            "texels per cube face",
+                                            "prefilter samples per texel (copy: roughness 0 copies the source)",
+                                            "beckmannCone: the sampling disk's radius, tan theta (seed 004 Fig. 3.24)",
+                                            "prefilter time of the mip (CPU clock around the finished dispatch)"};
+        ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+        for (int c = 0; c < 6; ++c) {
+            ImGui::TableSetColumnIndex(c);
+            ImGui::TableHeader(ImGui::TableGetColumnName(c));
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tips[c]);
+        }
+        for (size_t e = 0; e < table.size(); ++e) {
+            const int mip = mipOf(int(e));
+            ImGui::PushID(int(e));
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            if (mip >= 0) {
+                char label[16];
+                std::snprintf(label, sizeof label, "%d", mip);
+                if (ImGui::Selectable(label, mMipSelected == mip)) mMipSelected = mip;
+            } else {
+                ImGui::TextDisabled("-");
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("entry %zu is skipped: the cube has %d mips", e, fit);
+            }
+            ImGui::TableNextColumn();
+            // Dragging one entry past a neighbour pushes the neighbour along: the table stays
+            // non-decreasing, as shading's piecewise linear lookup needs.
+            float r = table[e];
+            ImGui::SetNextItemWidth(-FLT_MIN);
+            if (ImGui::DragFloat("##roughness", &r, 0.005f, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp)) {
+                table[e] = r;
+                for (size_t j = 0; j < e; ++j) table[j] = std::min(table[j], r);
+                for (size_t j = e + 1; j < table.size(); ++j) table[j] = std::max(table[j], r);
+                cost |= uint8_t(tableCost);
+            }
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("perceptual roughness of entry %zu (dragging past a neighbour moves it too)", e);
+            const bool used = mip >= 0;
+            auto cell = [](const char* fmt, auto value, bool show) {
+                ImGui::TableNextColumn();
+                if (show) ImGui::Text(fmt, value);
+                else ImGui::TextDisabled("-");
+            };
+            cell("%d", used ? std::max(s.cubeSize >> mip, 1) : 0, used);
+            if (used && table[e] <= 0.0f) {
+                ImGui::TableNextColumn();
+                ImGui::TextDisabled("copy");
+            } else {
+                cell("%d", s.samples, used);
+            }
+            cell("%.2f", Environment::beckmannDiskRadius(table[e]), used && cone);
+            const bool timed = used && size_t(mip) < built.size();
+            cell("%.1f", timed ? built[size_t(mip)].ms : 0.0, timed);
+            ImGui::PopID();
+        }
+        ImGui::EndTable();
+    }
+    if (int(table.size()) > fit) {
+        const int first = fit - 1, last = int(table.size()) - 2;
+        std::string skipped = first == last ? "entry " + std::to_string(first) + " is"
+                                            : "entries " + std::to_string(first) + ".." + std::to_string(last) + " are";
+        hintText("a " + std::to_string(s.cubeSize) + "^2 cube has " + std::to_string(fit) + " mips: " + skipped +
+                 " skipped and the last entry goes on the last mip");
+    }
+    const bool canAdd = int(table.size()) < fit;
+    if (!canAdd) ImGui::BeginDisabled();
+    if (ImGui::Button("Add mip")) {
+        // Continues the last step, so the table stays non-decreasing and ends at most at 1.
+        float last = table.back(), step = table.size() > 1 ? last - table[table.size() - 2] : 0.1f;
+        table.push_back(std::min(1.0f, last + std::max(step, 0.0f)));
+        cost |= uint8_t(tableCost);
+    }
+    if (!canAdd) ImGui::EndDisabled();
+    ImGui::SameLine();
+    const bool canRemove = table.size() > 1;
+    if (!canRemove) ImGui::BeginDisabled();
+    if (ImGui::Button("Remove last")) {
+        table.pop_back();
+        cost |= uint8_t(tableCost);
+    }
+    if (!canRemove) ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Seed defaults")) {
+        table = EnvironmentSettings{}.mipRoughness;
+        cost |= uint8_t(tableCost);
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the seed's 11 levels (seed 004, Fig. 3.24)");
+    if (env.ready()) {
+        double total = env.loadMs();
+        for (const Environment::MipInfo& info : built) total += info.ms;
+        char line[128];
+        std::snprintf(line, sizeof line, "%zu mips (%s): load %.1f ms, with the prefilter %.1f ms", built.size(),
+                      enumName(s.distribution), env.loadMs(), total);
+        hintText(line);
+    }
+
+    // The selected mip of the built chain, through the renderer's view pass.
+    if (s.enabled && env.ready() && !built.empty()) {
+        ImGui::Separator();
+        mMipSelected = std::clamp(mMipSelected, 0, int(built.size()) - 1);
+        if (ImGui::RadioButton("cross", !mMipLatLong)) mMipLatLong = false;
+        ImGui::SameLine();
+        if (ImGui::RadioButton("latlong", mMipLatLong)) mMipLatLong = true;
+        ImGui::SliderInt("preview mip", &mMipSelected, 0, int(built.size()) - 1);
+        ImGui::SliderFloat("mip exposure", &mMipExposure, -10.0f, 10.0f, "%.1f EV");
+        const float width = std::max(std::floor(ImGui::GetContentRegionAvail().x), 64.0f);
+        const int w = int(width), h = mMipLatLong ? w / 2 : w * 3 / 4;
+        if (!mMipImage || mMipImage.width() != w || mMipImage.height() != h) {
+            mMipImage = gl::Texture::create2D(GL_RGBA8, w, h);
+            if (!mMipFBO) mMipFBO = gl::createFramebuffer();
+            glNamedFramebufferTexture(mMipFBO.id(), GL_COLOR_ATTACHMENT0, mMipImage.id(), 0);
+        }
+        DebugView view;
+        view.name = "environment.mip" + std::to_string(mMipSelected);
+        view.texture = env.prefiltered();
+        view.target = GL_TEXTURE_CUBE_MAP;
+        view.mode = mMipLatLong ? shared::kViewCubeLatLong : shared::kViewCubeCross;
+        view.width = w;
+        view.height = h;
+        view.level = mMipSelected;
+        Renderer::ViewParams params;
+        params.exposure = mMipExposure;
+        glBindFramebuffer(GL_FRAMEBUFFER, mMipFBO.id());
+        glViewport(0, 0, w, h);
+        mRenderer.drawView(view, params);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        ImGui::Image(ImTextureID(intptr_t(mMipImage.id())), ImVec2(float(w), float(h)), ImVec2(0, 1), ImVec2(1, 0));
+        const Environment::MipInfo& info = built[size_t(mMipSelected)];
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(mMipLatLong ? "latlong: the centre looks along -z, +x at three quarters, the zenith at the top"
+                                          : "cross: -x +z +x -z in the middle row, +y above +z, -y below");
+        ImGui::TextDisabled("mip %d: roughness %.3f, %d^2 a face", mMipSelected, info.roughness, info.size);
+    }
+    ImGui::TreePop();
+    return cost;
+}
+
 void Editor::phaseWindow() {
     const VolumetricSettings& v = mPreset.volumetric;
     // Switching volumetric lighting on shows its phase function.
@@ -548,7 +736,8 @@ void Editor::drawPanels() {
             using S = std::decay_t<decltype(section)>;
             // The active technique's settings are what is being tuned: open them too.
             bool open = S::kSection == "render" || S::kSection == "toneMap" ||
-                        (S::kSection == "vct" && mPreset.header.technique == TechniqueKind::VCT);
+                        (S::kSection == "vct" && mPreset.header.technique == TechniqueKind::VCT) ||
+                        (S::kSection == "environment" && mOpenMips);
             if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
             cost |= drawSettings(section);
             if constexpr (std::is_same_v<S, CameraSettings>) cost |= cameraTools();
@@ -559,6 +748,7 @@ void Editor::drawPanels() {
             }
             if constexpr (std::is_same_v<S, VCTSettings>) vctPanel();
             if constexpr (std::is_same_v<S, VolumetricSettings>) volumetricPanel();
+            if constexpr (std::is_same_v<S, EnvironmentSettings>) cost |= roughnessMipsPanel();
         });
         ImGui::PopItemWidth();
     }

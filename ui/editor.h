@@ -30,6 +30,7 @@ struct EditorOptions {
     bool voxelWindow = false;      // the voxel view in its own window instead of the viewport
     bool coneOverlay = true;       // VCT: the cone set at the picked pixel (at first the centre) over the viewport
     bool phasePlot = false;        // the Phase function window open from the start (it also opens when volumetric is on)
+    bool roughnessMips = false;    // the environment section's Roughness mips panel open, and scrolled to, from the start
 };
 
 class Editor {
@@ -81,6 +82,14 @@ private:
     bool mPhaseLog = false;         // the plot's radius on the log scale of gi/volumetric/phase_plot.h
     bool mPhaseOthers = true;       // the other five functions as faint curves
     bool mVolumetricWasOn = false;  // volumetric.enabled last frame
+    // Environment: the Roughness mips panel (roughnessMipsPanel) and its preview of one mip.
+    bool mOpenMips = false;         // open the environment section and the panel at start
+    int mScrollToMips = 0;          // frames left in which the settings window scrolls to the panel
+    int mMipSelected = 0;
+    bool mMipLatLong = true;        // the preview as a latlong image, else as the cube's cross
+    float mMipExposure = 0.0f;      // EV
+    gl::Texture mMipImage;          // the preview, rendered by Renderer::drawView at the panel's width
+    gl::Framebuffer mMipFBO;
     std::string mLoadedScene;           // header.scene that mScene came from
     Scene mScene;
     Renderer mRenderer;
@@ -120,6 +129,7 @@ private:
     void vctPanel();
     void voxelWindow();
     void volumetricPanel();
+    uint8_t roughnessMipsPanel();
     void phaseWindow();
     std::vector<VoxelGridView> voxelGrids(const FrameSettings& fs) const;
     void readConePick();

@@ -10,6 +10,7 @@
 #include <cfloat>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 
 namespace gi::ui {
 
@@ -102,6 +103,28 @@ bool drawField(glm::vec3& value, const FieldMeta& m) {
     if (!changed) return false;
     value = glm::clamp(v, glm::vec3(lowEnd(m)), glm::vec3(highEnd(m)));
     return true;
+}
+
+bool drawField(std::vector<float>& value, const FieldMeta& m) {
+    // A tree node of one drag per entry; entries are not added or removed here (a panel that
+    // owns the list, e.g. the roughness mips, does that).
+    bool changed = false;
+    bool open = ImGui::TreeNode(m.key, "%s (%zu)", m.key, value.size());
+    fieldTooltip(m, true);
+    if (!open) return false;
+    for (size_t i = 0; i < value.size(); ++i) {
+        ImGui::PushID(int(i));
+        float v = value[i];
+        char label[32];
+        std::snprintf(label, sizeof label, "[%zu]", i);
+        if (ImGui::DragFloat(label, &v, dragSpeed(m, std::abs(v)), lowEnd(m), highEnd(m), "%.3f", kDragFlags)) {
+            value[i] = std::clamp(v, float(lowEnd(m)), float(highEnd(m)));
+            changed = true;
+        }
+        ImGui::PopID();
+    }
+    ImGui::TreePop();
+    return changed;
 }
 
 }  // namespace gi::ui

@@ -4,6 +4,8 @@
 
 #include "gi/preset/settings.h"
 
+#include <vector>
+
 #include <glm/vec3.hpp>
 #include <imgui.h>
 
@@ -18,6 +20,7 @@ bool drawField(int& value, const FieldMeta& m);
 bool drawField(bool& value, const FieldMeta& m);
 bool drawField(std::string& value, const FieldMeta& m);
 bool drawField(glm::vec3& value, const FieldMeta& m);
+bool drawField(std::vector<float>& value, const FieldMeta& m);
 
 // Tooltip for the last item: description, unit, range (numbers only) and what a change costs.
 void fieldTooltip(const FieldMeta& m, bool showRange);

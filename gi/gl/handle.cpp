@@ -17,6 +17,7 @@ size_t bytesPerTexel(GLenum f) {
         case GL_DEPTH_COMPONENT32F: case GL_DEPTH_COMPONENT24: case GL_DEPTH24_STENCIL8: case GL_RGB10_A2: case GL_R11F_G11F_B10F:
             return 4;
         case GL_RGBA16F: case GL_RG32F: return 8;
+        case GL_RGB32F: return 12;
         case GL_RGBA32F: return 16;
     }
     GI_ASSERT(false, "bytesPerTexel: add the format to the table");
@@ -46,17 +47,17 @@ Texture Texture::create2D(GLenum internalFormat, int width, int height, int leve
     return t;
 }
 
-Texture Texture::createCube(GLenum internalFormat, int size) {
+Texture Texture::createCube(GLenum internalFormat, int size, int levels) {
     Texture t;
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
-    glTextureStorage2D(id, 1, internalFormat, size, size);
+    glTextureStorage2D(id, levels, internalFormat, size, size);
     t.mHandle = Handle<detail::deleteTexture>(id);
     t.mTarget = GL_TEXTURE_CUBE_MAP;
     t.mFormat = internalFormat;
     t.mWidth = t.mHeight = size;
     t.mDepth = 6;
-    t.mBytes = bytesPerTexel(internalFormat) * size_t(size) * size * 6;
+    t.mBytes = 6 * mipChainBytes(bytesPerTexel(internalFormat), size, size, 1, levels);
     return t;
 }
 

@@ -78,7 +78,7 @@ class Texture {
 public:
     Texture() = default;
     static Texture create2D(GLenum internalFormat, int width, int height, int levels = 1);
-    static Texture createCube(GLenum internalFormat, int size);
+    static Texture createCube(GLenum internalFormat, int size, int levels = 1);
     static Texture create3D(GLenum internalFormat, int width, int height, int depth, int levels = 1);
 
     GLuint id() const { return mHandle.id(); }

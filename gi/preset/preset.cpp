@@ -1,5 +1,7 @@
 #include "gi/preset/preset.h"
 
+#include "gi/envmap/envmap_image.h"
+
 #include "gi/scene/scene.h"
 #include "gi/util/paths.h"
 
@@ -207,6 +209,15 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
     fs.vct = p.vct;
     fs.ssao = p.ssao;
     fs.volumetric = p.volumetric;
+    fs.environment = p.environment;
+    // Found once here, so the raster and the path tracer load the same file whatever the folder.
+    // A name not found stays as it is: loading it then fails with the error naming it.
+    if (fs.environment.enabled) {
+        try {
+            fs.environment.file = resolveEnvironmentFile(p.environment.file, p.folder);
+        } catch (const Error&) {
+        }
+    }
     fs.width = width;
     fs.height = height;
     return fs;

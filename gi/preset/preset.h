@@ -51,6 +51,7 @@ struct Preset {
     VCTSettings vct;
     SSAOSettings ssao;
     VolumetricSettings volumetric;
+    EnvironmentSettings environment;
     ReferenceSettings reference;
     QualitySettings quality;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)
@@ -65,6 +66,7 @@ struct Preset {
         f(vct);
         f(ssao);
         f(volumetric);
+        f(environment);
         f(reference);
         f(quality);
     }

@@ -90,6 +90,22 @@ inline void read(glm::vec3& v, const json& j, const FieldMeta& m, const std::str
     }
     v = out;
 }
+// A list of numbers (e.g. a roughness per mip): 1 to kMaxListLength entries, each in the range.
+inline constexpr size_t kMaxListLength = 32;
+inline void read(std::vector<float>& v, const json& j, const FieldMeta& m, const std::string& c,
+                 const std::string& k) {
+    if (!j.is_array() || j.empty() || j.size() > kMaxListLength)
+        throw Error(where(c, k) + ": expected an array of 1 to " + std::to_string(kMaxListLength) + " numbers");
+    std::vector<float> out;
+    for (size_t i = 0; i < j.size(); ++i) {
+        std::string ki = k + "[" + std::to_string(i) + "]";
+        if (!j[i].is_number()) throw Error(where(c, ki) + ": expected a number, got " + typeName(j[i]));
+        double x = j[i].get<double>();
+        checkNumber(x, m, c, ki);
+        out.push_back(float(x));
+    }
+    v = out;
+}
 template <ReflectedEnum E>
 void read(E& e, const json& j, const FieldMeta&, const std::string& c, const std::string& k) {
     std::vector<std::string> names;
@@ -113,6 +129,7 @@ inline json write(int i) { return i; }
 inline json write(bool b) { return b; }
 inline json write(const std::string& s) { return s; }
 inline json write(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+inline json write(const std::vector<float>& v) { return json(v); }
 template <ReflectedEnum E>
 json write(E e) {
     return enumName(e);
@@ -124,6 +141,7 @@ template <class T> const char* typeOf() {
     else if constexpr (std::is_same_v<T, bool>) return "bool";
     else if constexpr (std::is_same_v<T, std::string>) return "string";
     else if constexpr (std::is_same_v<T, glm::vec3>) return "vec3";
+    else if constexpr (std::is_same_v<T, std::vector<float>>) return "list";
     else return "enum";
 }
 

@@ -2,6 +2,7 @@
 
 #include "common/ggx.h"
 
+#include "gi/envmap/envmap_image.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 #include "gi/volumetric/medium.h"
@@ -13,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <mutex>
 
 namespace gi {
 
@@ -163,6 +166,113 @@ float powerHeuristic(float a, float b) {
     return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
+// The environment as a light: the latlong image and a 2D piecewise-constant distribution over
+// its cells (a marginal CDF over rows, a conditional CDF per row) for next-event estimation.
+// A cell's weight is the mean luminance of sampleEnvironment's bilinear lookup over the cell
+// (taps 1/8, 3/4, 1/8 in u and in v, u wrapping and v clamped as the lookup does) times sin theta
+// at the row's centre, so every cell the lookup can make bright has a weight. The density of a
+// sample is computed from the same CDF entries it was drawn with: what is sampled is what the
+// pdf says, whatever the rounding.
+class EnvironmentLight {
+public:
+    explicit EnvironmentLight(EnvironmentImage img) : mImage(std::move(img)) {
+        const int W = mImage.width, H = mImage.height;
+        GI_ASSERT(W > 0 && H > 0 && mImage.rgb.size() == size_t(W) * size_t(H) * 3, "environment image size");
+        std::vector<double> lum(size_t(W) * H), across(size_t(W) * H);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) lum[size_t(y) * W + x] = std::max(0.0f, luminance(mImage.texel(x, y)));
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const double* row = &lum[size_t(y) * W];
+                across[size_t(y) * W + x] = 0.125 * row[(x + W - 1) % W] + 0.75 * row[x] + 0.125 * row[(x + 1) % W];
+            }
+        mColumnCdf.resize(size_t(H) * (W + 1));
+        mRowCdf.resize(size_t(H) + 1);
+        std::vector<double> rowSum(static_cast<size_t>(H), 0.0);
+        std::vector<double> cdf(size_t(W) + 1);
+        double total = 0.0;
+        for (int y = 0; y < H; ++y) {
+            const double* up = &across[size_t(std::max(y - 1, 0)) * W];
+            const double* mid = &across[size_t(y) * W];
+            const double* down = &across[size_t(std::min(y + 1, H - 1)) * W];
+            double sinTheta = std::sin(double(kPi) * (y + 0.5) / H);
+            cdf[0] = 0.0;
+            for (int x = 0; x < W; ++x) cdf[size_t(x) + 1] = cdf[size_t(x)] + (0.125 * up[x] + 0.75 * mid[x] + 0.125 * down[x]) * sinTheta;
+            rowSum[size_t(y)] = cdf[size_t(W)];
+            float* out = &mColumnCdf[size_t(y) * (W + 1)];
+            for (int x = 0; x <= W; ++x)
+                out[x] = rowSum[size_t(y)] > 0.0 ? float(cdf[size_t(x)] / rowSum[size_t(y)]) : float(x) / float(W);
+            out[W] = 1.0f;
+            total += rowSum[size_t(y)];
+        }
+        mSampleable = total > 0.0;
+        double acc = 0.0;
+        mRowCdf[0] = 0.0f;
+        for (int y = 0; y < H; ++y) {
+            acc += rowSum[size_t(y)];
+            mRowCdf[size_t(y) + 1] = mSampleable ? float(acc / total) : float(y + 1) / float(H);
+        }
+        mRowCdf[size_t(H)] = 1.0f;
+    }
+
+    const EnvironmentImage& image() const { return mImage; }
+
+    // A direction drawn from two uniform numbers and its density in solid angle (0: no sample).
+    float sample(float u0, float u1, float rotationDeg, glm::vec3& dir) const {
+        if (!mSampleable) return 0.0f;
+        const int W = mImage.width, H = mImage.height;
+        float fy, fx;
+        int y = pick(mRowCdf.data(), H, u0, fy);
+        const float* columns = &mColumnCdf[size_t(y) * (W + 1)];
+        int x = pick(columns, W, u1, fx);
+        glm::vec2 uv((float(x) + fx) / float(W), (float(y) + fy) / float(H));
+        float sinTheta = std::sin(kPi * uv.y);
+        float pdfUV = (columns[x + 1] - columns[x]) * float(W) * (mRowCdf[size_t(y) + 1] - mRowCdf[size_t(y)]) * float(H);
+        if (pdfUV <= 0.0f || sinTheta <= 0.0f) return 0.0f;
+        dir = latLongDirection(uv, rotationDeg);
+        return pdfUV / (2.0f * kPi * kPi * sinTheta);
+    }
+
+    // The density sample() draws direction `dir` with, in solid angle.
+    float pdf(const glm::vec3& dir, float rotationDeg) const {
+        if (!mSampleable) return 0.0f;
+        const int W = mImage.width, H = mImage.height;
+        glm::vec2 uv = latLongUV(dir, rotationDeg);
+        int x = std::clamp(int(uv.x * float(W)), 0, W - 1), y = std::clamp(int(uv.y * float(H)), 0, H - 1);
+        float sinTheta = std::sin(kPi * uv.y);
+        if (sinTheta <= 0.0f) return 0.0f;
+        const float* columns = &mColumnCdf[size_t(y) * (W + 1)];
+        float pdfUV = (columns[x + 1] - columns[x]) * float(W) * (mRowCdf[size_t(y) + 1] - mRowCdf[size_t(y)]) * float(H);
+        return pdfUV / (2.0f * kPi * kPi * sinTheta);
+    }
+
+private:
+    // The entry i with cdf[i] <= u < cdf[i + 1] (never one of zero width) and where u lies in it.
+    static int pick(const float* cdf, int n, float u, float& within) {
+        int i = int(std::upper_bound(cdf, cdf + n + 1, u) - cdf) - 1;
+        i = std::clamp(i, 0, n - 1);
+        float width = cdf[i + 1] - cdf[i];
+        within = width > 0.0f ? std::clamp((u - cdf[i]) / width, 0.0f, 0x1.fffffep-1f) : 0.5f;
+        return i;
+    }
+
+    EnvironmentImage mImage;
+    std::vector<float> mRowCdf;     // height + 1 entries, 0 to 1
+    std::vector<float> mColumnCdf;  // per row, width + 1 entries, 0 to 1
+    bool mSampleable = false;       // false for a black map
+};
+
+// The environment as one trace() sees it.
+struct Environment {
+    const EnvironmentLight* light = nullptr;  // null: no environment (black where rays escape)
+    float intensity = 1.0f;
+    float rotation = 0.0f;
+    bool skybox = true;
+    bool sampled = true;  // next-event estimation; off only through the test hook
+
+    glm::vec3 radiance(const glm::vec3& d) const { return intensity * sampleEnvironment(light->image(), d, rotation); }
+};
+
 }  // namespace
 
 struct PathTracer::Impl {
@@ -184,6 +294,19 @@ struct PathTracer::Impl {
     float emitterPower = 0.0f;      // sum of area * luminance
     std::vector<int> triangleMaterial;
     float srgbLut[256];
+    // The last environment loaded, keyed by its file, so passes of one render load it once.
+    mutable std::mutex environmentMutex;
+    mutable std::string environmentFile;
+    mutable std::shared_ptr<const EnvironmentLight> environmentLight;
+
+    std::shared_ptr<const EnvironmentLight> environment(const std::string& file) const {
+        std::lock_guard<std::mutex> lock(environmentMutex);
+        if (!environmentLight || environmentFile != file) {
+            environmentLight = std::make_shared<const EnvironmentLight>(loadEnvironment(file));
+            environmentFile = file;
+        }
+        return environmentLight;
+    }
 
     glm::vec4 sampleTexture(int texture, glm::vec2 uv) const {
         const Texture& t = scene.textures[texture];
@@ -391,7 +514,7 @@ struct PathTracer::Impl {
     // Radiance along the ray o + t d (t > tnear); `firstHit` gets the distance to the first
     // surface, infinity when the ray escapes.
     glm::vec3 radiance(glm::vec3 o, glm::vec3 d, float tnear, const FrameSettings& fs, const ReferenceSettings& rs,
-                       PCG32& rng, uint64_t& rays, float& firstHit) const {
+                       const Environment& env, PCG32& rng, uint64_t& rays, float& firstHit) const {
         const bool countDirect = rs.mode != ReferenceMode::Indirect;
         const bool countIndirect = rs.mode != ReferenceMode::Direct;
         glm::vec3 L(0.0f), beta(1.0f);
@@ -400,7 +523,19 @@ struct PathTracer::Impl {
         for (int bounce = 0;; ++bounce) {
             Hit h = intersect(o, d, tnear, std::numeric_limits<float>::infinity());
             ++rays;
-            if (!h.valid) break;
+            if (!h.valid) {
+                // The environment: seen by the camera only as the skybox; gathered by every later
+                // ray, weighted against its next-event estimation as emission is.
+                if (env.light) {
+                    if (bounce == 0) {
+                        if (env.skybox && countDirect) L += beta * env.radiance(d);
+                    } else if (bounce <= 1 ? countDirect : countIndirect) {
+                        float w = env.sampled ? powerHeuristic(prevPdf, env.light->pdf(d, env.rotation)) : 1.0f;
+                        L += beta * env.radiance(d) * w;
+                    }
+                }
+                break;
+            }
             if (bounce == 0) firstHit = h.t;
             tnear = 0.0f;
             glm::vec3 P = o + d * h.t;
@@ -453,6 +588,7 @@ struct PathTracer::Impl {
                     L += beta * f * NoL * E;
                 }
                 if (!emitters.empty()) L += beta * sampleEmitter(P, Po, Ns, Ng, bsdf, rng, rays);
+                if (env.light && env.sampled) L += beta * sampleEnvironmentLight(env, Po, Ns, Ng, bsdf, rng, rays);
             }
 
             BSDFSample bs = bsdf.sample(rng);
@@ -533,6 +669,26 @@ struct PathTracer::Impl {
         float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
         return f * NoL * m.emissive * w / pdfLight;
     }
+
+    // Next-event estimation of the environment: a direction drawn from its luminance, an
+    // unbounded shadow ray, the power heuristic against BSDF sampling.
+    glm::vec3 sampleEnvironmentLight(const Environment& env, const glm::vec3& Po, const glm::vec3& Ns, const glm::vec3& Ng,
+                                     const BSDF& bsdf, PCG32& rng, uint64_t& rays) const {
+        float u0 = rng.uniform(), u1 = rng.uniform();
+        glm::vec3 Ldir;
+        float pdfLight = env.light->sample(u0, u1, env.rotation, Ldir);
+        if (pdfLight <= 0.0f) return glm::vec3(0.0f);
+        float NoL = glm::dot(Ns, Ldir);
+        if (NoL <= 0.0f || glm::dot(Ng, Ldir) <= 0.0f) return glm::vec3(0.0f);
+        glm::vec3 f = bsdf.eval(Ldir);
+        if (maxComponent(f) <= 0.0f) return glm::vec3(0.0f);
+        glm::vec3 Le = env.radiance(Ldir);
+        if (maxComponent(Le) <= 0.0f) return glm::vec3(0.0f);
+        ++rays;
+        if (occluded(Po, Ldir, std::numeric_limits<float>::infinity())) return glm::vec3(0.0f);
+        float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
+        return f * NoL * Le * w / pdfLight;
+    }
 };
 
 PathTracer::PathTracer(const Scene& scene) : mImpl(std::make_unique<Impl>(scene)) {}
@@ -547,6 +703,17 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
     const glm::mat4 invViewProj = glm::inverse(projectionMatrix(fs.camera, float(w) / float(h)) * view);
     const glm::vec3 forward = -glm::vec3(glm::inverse(view)[2]);
     const Medium medium = makeMedium(fs.volumetric, mImpl->scene.bounds);
+    Environment env;
+    std::shared_ptr<const EnvironmentLight> environment;
+    if (fs.environment.enabled) {
+        environment = mImpl->environment(fs.environment.file);  // throws naming the file
+        // A map scaled to nothing lights nothing: the same image as no environment.
+        if (fs.environment.intensity > 0.0f) env.light = environment.get();
+        env.intensity = fs.environment.intensity;
+        env.rotation = fs.environment.rotation;
+        env.skybox = fs.environment.skybox;
+        env.sampled = mEnvironmentSampling;
+    }
     std::atomic<bool> cancelled{false};
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
         if (cancel && cancel->load()) {
@@ -567,7 +734,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
                     glm::vec3 dir = glm::normalize(glm::vec3(pf) / pf.w - glm::vec3(pn) / pn.w);
                     float tnear = fs.camera.near / std::max(glm::dot(dir, forward), 1e-4f);
                     float tHit;
-                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, rng, rays, tHit);
+                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, env, rng, rays, tHit);
                     // After the path, so the path's random numbers do not depend on the medium.
                     if (medium.active) L = mImpl->throughMedium(medium, fs.camera.eye, dir, tHit, L, fs, rs, rng, rays);
                     if (std::isfinite(L.x + L.y + L.z)) acc += glm::dvec3(L);

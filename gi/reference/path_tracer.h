@@ -30,6 +30,19 @@
 //     technique, light reaching surfaces (and every later path segment) is not attenuated, and
 //     there is no multiple scattering. Its random numbers are drawn after the path's, so the
 //     surface paths are the same with and without the medium.
+//   - Environment lighting (seed 004 chapter 2; the latlong convention of gi/envmap/envmap_image.h):
+//     the radiance arriving from a direction d with nothing in the way is intensity x
+//     sampleEnvironment(d, rotation) (the bilinear lookup the raster's cube is made from). The
+//     camera sees it only as the skybox (black without), every later escaping ray gathers it.
+//     It is a light sampled by next-event estimation at each surface vertex: a 2D
+//     piecewise-constant distribution over the map's cells by luminance x sin(theta) (the
+//     cell's mean of the bilinear lookup, so no lit direction has zero density), density in
+//     solid angle pdf_uv / (2 pi^2 sin theta), an unbounded shadow ray, and the power heuristic
+//     against BSDF sampling, as for emissive triangles; the modes split it the same way. The
+//     map is loaded once per PathTracer and file name (not again if the file changes). The
+//     medium fades the skybox like any emission seen directly, but does not in-scatter the
+//     environment. Without the environment no random number or operation changes: the same
+//     pixels as before it existed.
 // Known limits: no refraction (glass is a dark dielectric, as in the scene files), no textures
 // besides base colour, textures sampled bilinearly at full resolution (no mips).
 #pragma once
@@ -66,11 +79,16 @@ public:
 
     uint64_t raysTraced() const { return mRays.load(); }
 
+    // Tests only: off leaves the environment to BSDF sampling alone (unbiased, noisier), the
+    // brute-force estimate that next-event estimation must agree with.
+    void setEnvironmentSampling(bool on) { mEnvironmentSampling = on; }
+
     struct Impl;
 
 private:
     std::unique_ptr<Impl> mImpl;
     mutable std::atomic<uint64_t> mRays{0};
+    bool mEnvironmentSampling = true;
 };
 
 }  // namespace gi

@@ -1,5 +1,6 @@
 #include "gi/reference/reference_cache.h"
 
+#include "gi/envmap/envmap_image.h"
 #include "gi/preset/reflect.h"
 #include "gi/util/error.h"
 
@@ -8,6 +9,9 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <mutex>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace gi {
@@ -38,6 +42,56 @@ public:
 private:
     uint64_t mHash = 0xcbf29ce484222325ULL;
 };
+
+// What identifies an environment map's contents without reading it: nothing more than the name
+// for a built-in (made by code), the device, inode, size and modification time of the file (or
+// of each cube face); empty when a file cannot be found as named.
+std::string environmentStamp(const std::string& file) {
+    if (file.rfind("builtin:", 0) == 0) return file;
+    std::vector<std::string> paths;
+    if (size_t at = file.find("{face}"); at != std::string::npos) {
+        for (const char* face : {"px", "nx", "py", "ny", "pz", "nz"}) paths.push_back(file.substr(0, at) + face + file.substr(at + 6));
+    } else {
+        paths.push_back(file);
+    }
+    std::string stamp;
+    for (const std::string& path : paths) {
+        struct stat st {};
+        if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return {};
+        // The inode too: a file replaced by rename (as writeEXR does) within one clock tick.
+        for (long long v : {(long long)st.st_dev, (long long)st.st_ino, (long long)st.st_size, (long long)st.st_mtim.tv_sec,
+                            (long long)st.st_mtim.tv_nsec})
+            stamp += std::to_string(v) + ":";
+        stamp += path + ";";
+    }
+    return stamp;
+}
+
+// The hash of an environment map's pixels, remembered per file while its stamp holds: the
+// editor keys its reference every frame and must not decode the map each time. A map that
+// cannot be loaded hashes to 0 here; rendering it then fails with the error naming the file.
+uint64_t environmentHash(const std::string& file) {
+    static std::mutex mutex;
+    static std::map<std::string, std::pair<std::string, uint64_t>> memo;  // file -> (stamp, hash)
+    std::string stamp = environmentStamp(file);
+    if (stamp.empty()) return 0;
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (auto it = memo.find(file); it != memo.end() && it->second.first == stamp) return it->second.second;
+    }
+    Hasher h;
+    try {
+        EnvironmentImage env = loadEnvironment(file);
+        h.value(env.width);
+        h.value(env.height);
+        h.bytes(env.rgb.data(), env.rgb.size() * sizeof(float));
+    } catch (const Error&) {
+        return 0;
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    memo[file] = {stamp, h.result()};
+    return h.result();
+}
 
 }  // namespace
 
@@ -74,6 +128,14 @@ uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const Referen
     h.value(fs.render.specular);
     // Only when on, so the references cached before volumetric lighting existed keep their keys.
     if (fs.volumetric.enabled) h.text(toJson(fs.volumetric).dump());
+    // The environment's settings and pixels, so a map edited under the same name renders again.
+    if (fs.environment.enabled) {
+        // Only what the path tracer reads: the GPU prefilter's settings do not change the reference.
+        json env = toJson(fs.environment);
+        for (const char* gpuOnly : {"cubeSize", "samples", "distribution", "mipRoughness"}) env.erase(gpuOnly);
+        h.text(env.dump());
+        h.value(environmentHash(fs.environment.file));
+    }
     return h.result();
 }
 

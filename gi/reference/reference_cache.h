@@ -4,6 +4,10 @@
 // the image size, the specular switch, every reference setting, the volumetric settings when
 // volumetric lighting is enabled, and kReferenceVersion (bumped whenever the path tracer's
 // output changes). Files are float EXRs written atomically.
+// With environment lighting enabled the key also has the environment settings and a hash of the
+// map's pixels, remembered per file while its size and modification time hold (so keying every
+// frame does not decode the map); a map that cannot be loaded adds nothing, and rendering it
+// then fails with the error naming the file.
 #pragma once
 
 #include "gi/reference/path_tracer.h"

@@ -8,6 +8,7 @@
 #include "gi/ssao/ssao_settings.h"
 #include "gi/vct/vct_settings.h"
 #include "gi/volumetric/volumetric_settings.h"
+#include "gi/envmap/envmap_settings.h"
 
 #include <vector>
 
@@ -77,6 +78,7 @@ struct FrameSettings {
     VCTSettings vct;
     SSAOSettings ssao;
     VolumetricSettings volumetric;
+    EnvironmentSettings environment;
     int width = 640;
     int height = 360;
 };

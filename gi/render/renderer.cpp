@@ -91,6 +91,7 @@ Renderer::Renderer()
     mPointSampler = makeSampler(GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
     mShadowSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, true);
     mMaterialSampler = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+    mLUTSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
     glSamplerParameterf(mMaterialSampler.id(), GL_TEXTURE_MAX_ANISOTROPY, 4.0f);
     // Software rasterisers defer draws: serialise the pass timers there (gi/gl/timer.h).
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -121,6 +122,7 @@ size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
     bytes += techniqueBytes(fs);
     bytes += SSAO::estimateBytes(fs.width, fs.height);
     bytes += Volumetric::estimateBytes(fs);
+    bytes += Environment::estimateBytes(fs.environment);
     return bytes;
 }
 
@@ -229,11 +231,14 @@ void Renderer::render(const FrameSettings& fs) {
     glm::mat4 viewProj = proj * view;
 
     mTimer.beginFrame();
+    mEnvironment.prepare(fs.environment, mTimer);
     renderShadows(fs);
     renderGBuffer(viewProj);
     renderIndirect(fs, view, proj);
     mSSAO.execute(fs.ssao, mDepth.id(), mNormal.id(), mWidth, mHeight, view, proj, mTimer);
     renderLighting(fs, viewProj);
+    if (fs.environment.enabled && fs.environment.skybox && mEnvironment.ready())
+        mEnvironment.sky(fs.environment, mDepth.id(), mHDR.id(), mWidth, mHeight, glm::inverse(viewProj), fs.camera.eye, mTimer);
     mVolumetric.execute({fs, mScene->bounds(), mShadowViews, mDepth.id(), mHDR.id(), mWidth, mHeight, glm::inverse(viewProj),
                          float(mShadowSize)},
                         mTimer);
@@ -359,6 +364,12 @@ void Renderer::renderIndirect(const FrameSettings& fs, const glm::mat4& view, co
         mTechnique->execute(ctx);
         return;
     }
+    if (fs.environment.enabled && mEnvironment.ready()) {
+        // Technique none with an environment: it gives the indirect diffuse and specular terms.
+        mEnvironment.shade(fs.environment, mNormal.id(), mMaterial.id(), mDepth.id(), mIndirect.id(), mIndirectSpecular.id(), mWidth,
+                           mHeight, glm::inverse(proj * view), fs.camera.eye, mTimer);
+        return;
+    }
     auto pass = mTimer.scope("indirect");
     // Technique none: the indirect term is the constant ambient radiance.
     const glm::vec4 ambient(fs.render.ambient, 1.0f);
@@ -385,6 +396,8 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     glBindSampler(kUnitAO, mPointSampler.id());
     glBindTextureUnit(kUnitIndirectSpecular, mIndirectSpecular.id());
     glBindSampler(kUnitIndirectSpecular, mPointSampler.id());
+    glBindTextureUnit(kUnitBRDFLUT, mEnvironment.brdfLUT());
+    glBindSampler(kUnitBRDFLUT, mLUTSampler.id());
     glm::mat4 inv = glm::inverse(viewProj);
 
     glDisable(GL_BLEND);
@@ -454,6 +467,7 @@ bool Renderer::reloadShaders(std::string& log) {
     if (mTechnique && !mTechnique->reloadShaders(log)) ok = false;
     if (!mSSAO.reloadShaders(log)) ok = false;
     if (!mVolumetric.reloadShaders(log)) ok = false;
+    if (!mEnvironment.reloadShaders(log)) ok = false;
     for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
@@ -483,6 +497,7 @@ std::vector<DebugView> Renderer::debugViews() const {
         for (DebugView& tv : mTechnique->debugViews()) v.push_back(tv);
     for (DebugView& sv : mSSAO.debugViews()) v.push_back(sv);
     for (DebugView& vv : mVolumetric.debugViews()) v.push_back(vv);
+    for (DebugView& ev : mEnvironment.debugViews()) v.push_back(ev);
     for (size_t i = 0; i < mShadows.size(); ++i) {
         if (!mShadows[i].depth) continue;
         std::string name = "shadow" + std::to_string(i);
@@ -510,6 +525,7 @@ std::vector<PassStats> Renderer::passStats() const {
         else if (r.name == "tonemap") bytes = mLDR.bytes();
         else if (r.name == "ssao") bytes = mSSAO.memoryBytes();  // both AO targets; the blur pass holds none
         else if (r.name == "volumetric.march") bytes = mVolumetric.memoryBytes();  // both buffers
+        else if (r.name == "environment.prefilter") bytes = mEnvironment.memoryBytes();
         else if (mTechnique) bytes = mTechnique->passMemory(r.name);
         out.push_back({r.name, r.gpuMs, bytes});
     }
@@ -521,6 +537,7 @@ size_t Renderer::memoryBytes() const {
     if (mTechnique) total += mTechnique->memoryBytes();
     total += mSSAO.memoryBytes();
     total += mVolumetric.memoryBytes();
+    total += mEnvironment.memoryBytes();
     for (auto& s : mShadows) total += s.depth.bytes();
     for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mIndirectSpecular, &mHDR, &mLDR})
         total += t->bytes();
@@ -566,7 +583,7 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     mViewProg.set("uRange", view.range);
     mViewProg.set("uZoom", std::max(p.zoom, 1e-3f));
     mViewProg.set("uPan", p.pan);
-    mViewProg.set("uLevel", p.level);
+    mViewProg.set("uLevel", p.level + float(view.level));
     mViewProg.set("uAxis", p.axis);
     mViewProg.set("uSlice", p.slice);
     mViewProg.set("uSHComponent", p.shComponent);
@@ -575,8 +592,15 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     mViewProg.set("uScale", view.scale);
     GLuint units[3] = {GLuint(kUnitSource), 0, 0};
     int count = 1;
+    GLuint sampler = mPointSampler.id();
+    gl::Sampler cubeSampler;
+    GLint depthBits = 0;
     if (view.target == GL_TEXTURE_CUBE_MAP) {
         units[0] = kUnitSourceCube;
+        // Cube views show one mip (`level`), nearest texels: the point sampler has no mips.
+        cubeSampler = makeSampler(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
+        sampler = cubeSampler.id();
+        if (view.texture) glGetTextureLevelParameteriv(view.texture, 0, GL_TEXTURE_DEPTH_SIZE, &depthBits);
     } else if (view.target == GL_TEXTURE_3D && (view.mode == kViewVoxelPacked || view.mode == kViewVoxelPackedNormal)) {
         units[0] = kUnitSourceU3D;
     } else if (view.target == GL_TEXTURE_3D) {
@@ -585,10 +609,11 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
         units[2] = kUnitSource3D + 2;
         count = view.extra[0] ? 3 : 1;
     }
+    mViewProg.set("uDepthCube", depthBits > 0 ? 1 : 0);
     const GLuint textures[3] = {view.texture, view.extra[0], view.extra[1]};
     for (int i = 0; i < count; ++i) {
         glBindTextureUnit(units[i], textures[i]);
-        glBindSampler(units[i], mPointSampler.id());
+        glBindSampler(units[i], sampler);
     }
     glDrawArrays(GL_TRIANGLES, 0, 3);
     for (int i = 0; i < count; ++i) {

@@ -20,6 +20,7 @@
 #include "gi/scene/scene.h"
 #include "gi/ssao/ssao.h"
 #include "gi/volumetric/volumetric.h"
+#include "gi/envmap/environment.h"
 
 #include <memory>
 #include <span>
@@ -36,6 +37,7 @@ struct DebugView {
     float near = 0.0f, far = 1.0f, range = 1.0f;  // for depth linearisation
     GLuint extra[2] = {0, 0};  // SH volumes: the G and B coefficient textures (texture holds R)
     float scale = 1.0f;        // SH volumes: factor from stored values to radiance
+    int level = 0;             // mip shown (added to ViewParams::level), e.g. a prefiltered environment mip
 };
 
 struct PassStats {
@@ -109,6 +111,7 @@ public:
     gl::GpuTimer& timer() { return mTimer; }
     // The technique of the last frame (null for none), for tests and the editor's previewers.
     const Technique* technique() const { return mTechnique.get(); }
+    const Environment& environment() const { return mEnvironment; }
     std::vector<Technique::VolumeMemory> techniqueVolumes() const {
         return mTechnique ? mTechnique->volumeMemory() : std::vector<Technique::VolumeMemory>{};
     }
@@ -149,7 +152,7 @@ private:
     std::unique_ptr<GPUScene> mScene;
     gl::Program mGBufferProg, mShadowProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
     gl::VertexArray mEmptyVAO;
-    gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler;
+    gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler, mLUTSampler;
     gl::Texture mWhite;
 
     int mWidth = 0, mHeight = 0;
@@ -166,6 +169,7 @@ private:
     std::unique_ptr<Technique> mTechnique;
     SSAO mSSAO;
     Volumetric mVolumetric;
+    Environment mEnvironment;
     TechniqueKind mTechniqueKind = TechniqueKind::None;
 
     void resize(int width, int height);

@@ -110,9 +110,34 @@ Scene makeBasic() {
     return s;
 }
 
+// Seed 004's glossy spheres for environment lighting: two rows of five spheres, gold metal above
+// and a white dielectric below, roughness 0.05, 0.25, 0.5, 0.75, 1 from left to right, floating
+// (no floor: the environment lights them from every side). No lights of its own.
+Scene makeSpheres() {
+    Scene s;
+    s.name = "spheres";
+    MeshBuilder b(s);
+    const float roughness[5] = {0.05f, 0.25f, 0.5f, 0.75f, 1.0f};
+    for (int i = 0; i < 5; ++i) {
+        float x = (float(i) - 2.0f) * 1.1f;
+        int metal = b.material("gold" + std::to_string(i), {1.0f, 0.78f, 0.34f}, roughness[i]);
+        s.materials[size_t(metal)].metallic = 1.0f;
+        int plastic = b.material("white" + std::to_string(i), {0.8f, 0.8f, 0.8f}, roughness[i]);
+        b.sphere(metal, {x, 0.6f, 0.0f}, 0.5f);
+        b.sphere(plastic, {x, -0.6f, 0.0f}, 0.5f);
+    }
+    CameraSettings cam;
+    cam.eye = {0.0f, 0.0f, 6.5f};
+    cam.target = {0.0f, 0.0f, 0.0f};
+    cam.fovY = 45.0f;
+    s.cameras.push_back(cam);
+    s.finalize();
+    return s;
+}
+
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "basic"}; }
+std::vector<std::string> builtinSceneNames() { return {"cornell", "basic", "spheres"}; }
 
 bool isBuiltinScene(const std::string& name) {
     for (auto& n : builtinSceneNames())
@@ -123,7 +148,8 @@ bool isBuiltinScene(const std::string& name) {
 Scene makeBuiltinScene(const std::string& name) {
     if (name == "cornell") return makeCornell();
     if (name == "basic") return makeBasic();
-    throw Error("unknown built-in scene '" + name + "' (valid: cornell, basic)");
+    if (name == "spheres") return makeSpheres();
+    throw Error("unknown built-in scene '" + name + "' (valid: cornell, basic, spheres)");
 }
 
 Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder) {

@@ -29,6 +29,7 @@ std::vector<fs::path> assetSearchPath(const fs::path& presetFolder) {
             if (!item.empty()) dirs.emplace_back(item);
     }
     dirs.push_back(fs::path(GI_SHARED_DIR) / "scenes");
+    dirs.push_back(fs::path(GI_SHARED_DIR) / "envmaps");
     return dirs;
 }
 

@@ -13,7 +13,7 @@ std::filesystem::path shaderDir();
 std::filesystem::path presetDir();
 
 // The asset search path, in order: the preset's own folder (when given), each entry of
-// $GI_ASSET_PATH (colon-separated), then ../shared/scenes beside the checkout.
+// $GI_ASSET_PATH (colon-separated), then ../shared/scenes and ../shared/envmaps beside the checkout.
 std::vector<std::filesystem::path> assetSearchPath(const std::filesystem::path& presetFolder = {});
 
 // Resolves a relative asset name against the search path. Absolute paths and paths that exist

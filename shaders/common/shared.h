@@ -23,6 +23,7 @@ GI_CONST int kUnitShadow2D = 6;
 GI_CONST int kUnitShadowCube = 7;
 GI_CONST int kUnitAO = 8;  // ambient occlusion (gi/ssao), multiplies the indirect term
 GI_CONST int kUnitIndirectSpecular = 9;  // specular radiance from the technique (VCT's cone), or 0
+GI_CONST int kUnitBRDFLUT = 10;  // the split-sum table (gi/envmap/environment.h), (A, B) by (N.V, roughness)
 // Material base colour texture in the G-buffer and shadow passes.
 GI_CONST int kUnitBaseColor = 0;
 // Source texture of the view and tone-map passes.
@@ -63,6 +64,7 @@ GI_CONST int kViewVoxelAlpha = 10;  // the same, alpha (opacity) as grey
 GI_CONST int kViewVoxelPacked = 11; // a slice of an r32ui volume of packed RGBA8 (VCT albedo, emission): rgb
 GI_CONST int kViewVoxelPackedNormal = 12;  // the same holding n * 0.5 + 0.5: shown as stored, empty black
 GI_CONST int kUnitSourceU3D = 5;    // view.frag: unsigned integer volumes
+GI_CONST int kViewCubeLatLong = 13; // a cube map (mip `level`) as an equirectangular image, gi/envmap/envmap_image.h's convention
 
 #ifdef __cplusplus
 }  // namespace gi::shared

@@ -1,14 +1,15 @@
 // Base of the HDR image: emission plus the indirect term. The indirect texture holds
 // irradiance / pi, so a Lambert surface reflects albedo * indirect; metals have no diffuse.
 // Ambient occlusion (SSAO, any technique) scales the indirect term. Specular radiance from the
-// technique (VCT's specular cone; 0 otherwise) is weighed by the split-sum approximation of the
-// GGX lobe's directional albedo (brdf.glsl envBRDFApprox).
+// technique (VCT's specular cone) or the environment map is weighed by the split-sum table of
+// the GGX lobe's directional albedo, F0 * A + B (gi/envmap/environment.h).
 #include "render/gbuffer_common.glsl"
 #include "common/brdf.glsl"
 
 layout(binding = kUnitIndirect) uniform sampler2D uIndirect;
 layout(binding = kUnitAO) uniform sampler2D uAO;  // 1 everywhere when SSAO is off
 layout(binding = kUnitIndirectSpecular) uniform sampler2D uIndirectSpecular;
+layout(binding = kUnitBRDFLUT) uniform sampler2D uBRDFLUT;
 
 in vec2 vUV;
 out vec4 oColor;
@@ -25,6 +26,7 @@ void main() {
     vec3 indirect = texelFetch(uIndirect, px, 0).rgb * ao;
     vec3 specular = texelFetch(uIndirectSpecular, px, 0).rgb * ao;
     vec3 f0 = mix(vec3(0.04), s.baseColor, s.metallic);
-    vec3 weight = envBRDFApprox(f0, s.roughness, max(dot(s.N, s.V), 1e-4));
+    vec2 ab = textureLod(uBRDFLUT, vec2(max(dot(s.N, s.V), 1e-4), s.roughness), 0.0).rg;
+    vec3 weight = f0 * ab.x + ab.y;
     oColor = vec4(emissive + s.baseColor * (1.0 - s.metallic) * indirect + specular * weight, 1.0);
 }

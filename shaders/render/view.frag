@@ -1,5 +1,6 @@
 // Debug views of any texture: channel select, exposure, zoom and pan, depth linearisation and
-// cube maps unfolded as a cross. Used by the editor's buffer previewer and `gi-render --views`.
+// cube maps unfolded as a cross or shown as a latlong (equirectangular) image, at any mip. Used
+// by the editor's buffer previewer and Roughness mips panel, and `gi-render --views`.
 #include "common/shared.h"
 #include "common/sh.h"
 #include "common/color.glsl"
@@ -25,6 +26,7 @@ uniform float uRange;       // distance shown as black in linear depth views
 uniform vec2 uPan;           // texture-space offset of the view centre
 uniform float uZoom;         // 1 shows the whole texture
 uniform float uLevel;        // mip level
+uniform bool uDepthCube;     // cube views: a depth cube (point shadow map) shows its one channel as grey
 
 in vec2 vUV;
 out vec4 oColor;
@@ -32,7 +34,8 @@ out vec4 oColor;
 const float kPiView = 3.14159265358979;
 
 vec3 cubeCross(vec2 uv, out bool inside) {
-    // 4 x 3 cross: row 1 holds -X +Z +X -Z; +Y above +Z, -Y below.
+    // 4 x 3 cross, uv.y = 0 at the top: row 1 holds -X +Z +X -Z; +Y above +Z, -Y below, each
+    // face meeting +Z along a shared edge.
     vec2 cell = floor(uv * vec2(4.0, 3.0));
     vec2 f = fract(uv * vec2(4.0, 3.0)) * 2.0 - 1.0;
     inside = true;
@@ -42,10 +45,18 @@ vec3 cubeCross(vec2 uv, out bool inside) {
         if (cell.x == 2.0) return vec3(1.0, -f.y, -f.x);
         return vec3(-f.x, -f.y, -1.0);
     }
-    if (cell.x == 1.0 && cell.y == 2.0) return vec3(f.x, 1.0, f.y);
-    if (cell.x == 1.0 && cell.y == 0.0) return vec3(f.x, -1.0, -f.y);
+    // uv.y (and f.y) grow downwards: cell row 0 is the top one.
+    if (cell.x == 1.0 && cell.y == 0.0) return vec3(f.x, 1.0, f.y);
+    if (cell.x == 1.0 && cell.y == 2.0) return vec3(f.x, -1.0, -f.y);
     inside = false;
     return vec3(0.0, 0.0, 1.0);
+}
+
+// The direction at latlong coordinates (v = 0 at the top): the inverse of latLongUV in
+// gi/envmap/envmap_image.h (u = 0.5 + atan2(d.x, -d.z) / 2 pi, v = acos(d.y) / pi), unrotated.
+vec3 latLongDirection(vec2 uv) {
+    float phi = (uv.x - 0.5) * 2.0 * kPiView, theta = uv.y * kPiView;
+    return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
 }
 
 // A blue-green-yellow-red ramp for magnitudes in [0, 1].
@@ -104,15 +115,20 @@ void main() {
         oColor = vec4(uFalseColour ? falseColour(m) : linearToSRGB(c), 1.0);
         return;
     }
-    if (uMode == kViewCubeCross) {
-        bool inside;
-        vec3 dir = cubeCross(vec2(uv.x, 1.0 - uv.y), inside);
-        if (!inside) {
-            oColor = vec4(0.05, 0.05, 0.05, 1.0);
-            return;
+    if (uMode == kViewCubeCross || uMode == kViewCubeLatLong) {
+        vec3 dir;
+        if (uMode == kViewCubeCross) {
+            bool inside;
+            dir = cubeCross(vec2(uv.x, 1.0 - uv.y), inside);
+            if (!inside) {
+                oColor = vec4(0.05, 0.05, 0.05, 1.0);
+                return;
+            }
+        } else {
+            dir = latLongDirection(vec2(uv.x, 1.0 - uv.y));
         }
         v = textureLod(uSourceCube, dir, uLevel);
-        v = vec4(v.rrr, 1.0);
+        if (uDepthCube) v = vec4(v.rrr, 1.0);
     } else {
         v = textureLod(uSource, uv, uLevel);
     }
@@ -132,7 +148,7 @@ void main() {
         c = v.rgb;
     }
     if (single) c = vec3(dot(v, uChannelMask));
-    if (uMode == kViewColor || uMode == kViewCubeCross) c = linearToSRGB(c * uExposureScale);
+    if (uMode == kViewColor || uMode == kViewCubeCross || uMode == kViewCubeLatLong) c = linearToSRGB(c * uExposureScale);
     else if (uMode == kViewDisplay) c = clamp(c * uExposureScale, 0.0, 1.0);
     oColor = vec4(c, 1.0);
 }

@@ -1,0 +1,243 @@
+#include "gi/envmap/environment.h"
+
+#include "common/shared.h"
+#include "gi/preset/reflect.h"
+#include "gi/render/renderer.h"
+#include "gi/util/error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace gi {
+
+namespace {
+
+constexpr int kLUTSize = 128;
+constexpr int kLUTSamples = 512;
+constexpr int kIrradianceSize = 32;
+constexpr int kMaxMips = 32;  // shade.comp's uMipRoughness[32]
+
+gl::Sampler makeSampler(GLenum minFilter, GLenum wrapS) {
+    GLuint s = 0;
+    glCreateSamplers(1, &s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GLint(minFilter));
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, minFilter == GL_NEAREST ? GL_NEAREST : GL_LINEAR);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GLint(wrapS));
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return gl::Sampler(s);
+}
+
+GLuint groups(int n) { return GLuint((n + 7) / 8); }
+
+double nowMs() { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+int fullMipCount(int size) { return 1 + int(std::floor(std::log2(double(std::max(size, 1))))); }
+
+// How many mips the chain can have: one per table entry, no more than the cube halves.
+int chainMips(const EnvironmentSettings& s) { return std::min({int(s.mipRoughness.size()), fullMipCount(s.cubeSize), kMaxMips}); }
+
+}  // namespace
+
+float Environment::beckmannDiskRadius(float roughness) {
+    // Seed 004 Fig. 3.24: roughness -> sampling disk radius tan(theta).
+    static const float r[] = {0.0f, 0.01f, 0.05f, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 1.0f};
+    static const float d[] = {0.0f, 0.01f, 0.1f, 0.21f, 0.42f, 0.62f, 0.83f, 1.07f, 1.27f, 1.48f, 2.14f};
+    if (roughness <= 0.0f) return 0.0f;
+    for (int i = 0; i + 1 < 11; ++i)
+        if (roughness <= r[i + 1]) return d[i] + (d[i + 1] - d[i]) * (roughness - r[i]) / (r[i + 1] - r[i]);
+    return d[10];
+}
+
+Environment::Environment()
+    : mToCubeProg("environment.toCube", {{GL_COMPUTE_SHADER, "envmap/to_cube.comp"}}),
+      mPrefilterProg("environment.prefilter", {{GL_COMPUTE_SHADER, "envmap/prefilter.comp"}}),
+      mLUTProg("environment.brdfLUT", {{GL_COMPUTE_SHADER, "envmap/brdf_lut.comp"}}),
+      mShadeProg("environment.shade", {{GL_COMPUTE_SHADER, "envmap/shade.comp"}}),
+      mSkyProg("environment.sky", {{GL_COMPUTE_SHADER, "envmap/sky.comp"}}) {
+    mLinear = makeSampler(GL_LINEAR, GL_REPEAT);
+    mCubeLinear = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(mCubeLinear.id(), GL_TEXTURE_CUBE_MAP_SEAMLESS, GL_TRUE);
+    mPoint = makeSampler(GL_NEAREST, GL_CLAMP_TO_EDGE);
+    computeLUT();
+}
+
+void Environment::computeLUT() {
+    mLUT = gl::Texture::create2D(GL_RG16F, kLUTSize, kLUTSize);
+    mLUTProg.use();
+    mLUTProg.set("uSize", kLUTSize);
+    mLUTProg.set("uSamples", kLUTSamples);
+    glBindImageTexture(0, mLUT.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    glDispatchCompute(groups(kLUTSize), groups(kLUTSize), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+size_t Environment::estimateBytes(const EnvironmentSettings& s) {
+    if (!s.enabled) return 0;
+    size_t face = size_t(s.cubeSize) * size_t(s.cubeSize) * 8 * 6;
+    return face * 4 / 3 * 2 + size_t(kIrradianceSize) * kIrradianceSize * 8 * 6 + size_t(kLUTSize) * kLUTSize * 4;
+}
+
+void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
+    if (!s.enabled) {
+        if (!mKey.empty()) {
+            for (gl::Texture* t : {&mLatLong, &mSource, &mPrefiltered, &mIrradiance}) *t = gl::Texture();
+            mImage = EnvironmentImage();
+            mMips.clear();
+            mKey.clear();
+        }
+        return;
+    }
+    // Rebuilt when anything that shapes the maps changed (intensity and rotation apply at lookup).
+    json key = toJson(s);
+    key.erase("intensity");
+    key.erase("rotation");
+    key.erase("skybox");
+    key.erase("enabled");
+    std::string k = key.dump();
+    if (k == mKey) return;
+    mKey.clear();
+    auto pass = timer.scope("environment.prefilter");
+    double t0 = nowMs();
+    if (mImage.source != s.file) mImage = loadEnvironment(s.file);
+    // Uploaded bottom row first, as every GL image here is (so the debug view shows the zenith at
+    // the top); to_cube.comp reads v = 1 - latLongUV's v.
+    mLatLong = gl::Texture::create2D(GL_RGB32F, mImage.width, mImage.height);
+    size_t row = size_t(mImage.width) * 3;
+    std::vector<float> flipped(mImage.rgb.size());
+    for (int y = 0; y < mImage.height; ++y)
+        std::copy_n(&mImage.rgb[size_t(mImage.height - 1 - y) * row], row, &flipped[size_t(y) * row]);
+    glTextureSubImage2D(mLatLong.id(), 0, 0, 0, mImage.width, mImage.height, GL_RGB, GL_FLOAT, flipped.data());
+
+    int size = s.cubeSize, levels = fullMipCount(size), mips = chainMips(s);
+    mSource = gl::Texture::createCube(GL_RGBA16F, size, levels);
+    mToCubeProg.use();
+    mToCubeProg.set("uSize", size);
+    glBindTextureUnit(0, mLatLong.id());
+    glBindSampler(0, mLinear.id());
+    glBindImageTexture(0, mSource.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups(size), groups(size), 6);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glGenerateTextureMipmap(mSource.id());
+    glFinish();
+    mLoadMs = nowMs() - t0;
+
+    mPrefiltered = gl::Texture::createCube(GL_RGBA16F, size, mips);
+    mIrradiance = gl::Texture::createCube(GL_RGBA16F, kIrradianceSize);
+    mPrefilterProg.use();
+    mPrefilterProg.set("uSourceSize", size);
+    glBindTextureUnit(0, mSource.id());
+    glBindSampler(0, mCubeLinear.id());
+    mMips.clear();
+    auto dispatch = [&](const gl::Texture& dst, int level, int faceSize, int mode, float roughness, float disk, int samples) {
+        mPrefilterProg.set("uSize", faceSize);
+        mPrefilterProg.set("uMode", mode);
+        mPrefilterProg.set("uRoughness", roughness);
+        mPrefilterProg.set("uDiskRadius", disk);
+        mPrefilterProg.set("uSamples", samples);
+        glBindImageTexture(0, dst.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        double start = nowMs();
+        glDispatchCompute(groups(faceSize), groups(faceSize), 6);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glFinish();
+        return nowMs() - start;
+    };
+    // A table longer than the cube's halvings keeps its first entries and its last (so the
+    // roughest lobe stays reachable): 9 mips of a 256^2 cube take 0 ... 0.5 and 1 of the seed's 11.
+    std::vector<float> table(s.mipRoughness.begin(), s.mipRoughness.begin() + mips);
+    table.back() = s.mipRoughness.back();
+    for (int m = 0; m < mips; ++m) {
+        MipInfo info;
+        info.roughness = table[size_t(m)];
+        info.size = std::max(size >> m, 1);
+        bool cone = s.distribution == PrefilterDistribution::BeckmannCone;
+        info.diskRadius = cone ? beckmannDiskRadius(info.roughness) : 0.0f;
+        info.samples = info.roughness > 0.0f ? s.samples : 0;
+        info.ms = dispatch(mPrefiltered, m, info.size, cone ? 1 : 0, info.roughness, info.diskRadius, s.samples);
+        mMips.push_back(info);
+    }
+    std::array<glm::vec3, 9> sh = irradianceSH(mImage);
+    glProgramUniform3fv(mPrefilterProg.id(), mPrefilterProg.location("uSH[0]"), 9, &sh[0].x);
+    dispatch(mIrradiance, 0, kIrradianceSize, 2, 1.0f, 0.0f, 1);
+    glBindSampler(0, 0);
+    mKey = k;
+}
+
+void Environment::shade(const EnvironmentSettings& s, GLuint normal, GLuint material, GLuint depth, GLuint indirect, GLuint specular,
+                        int width, int height, const glm::mat4& invViewProj, const glm::vec3& eye, gl::GpuTimer& timer) const {
+    auto pass = timer.scope("environment.shade");
+    mShadeProg.use();
+    mShadeProg.set("uSize", glm::ivec2(width, height));
+    mShadeProg.set("uInvViewProj", invViewProj);
+    mShadeProg.set("uEye", eye);
+    mShadeProg.set("uIntensity", s.intensity);
+    mShadeProg.set("uRotation", s.rotation);
+    mShadeProg.set("uMipCount", int(mMips.size()));
+    std::vector<float> table(kMaxMips, 1.0f);
+    for (size_t m = 0; m < mMips.size(); ++m) table[m] = mMips[m].roughness;
+    glProgramUniform1fv(mShadeProg.id(), mShadeProg.location("uMipRoughness[0]"), kMaxMips, table.data());
+    const GLuint units[3] = {GLuint(shared::kUnitNormal), GLuint(shared::kUnitMaterial), GLuint(shared::kUnitDepth)};
+    const GLuint textures[3] = {normal, material, depth};
+    for (int i = 0; i < 3; ++i) {
+        glBindTextureUnit(units[i], textures[i]);
+        glBindSampler(units[i], mPoint.id());
+    }
+    glBindTextureUnit(0, mPrefiltered.id());
+    glBindSampler(0, mCubeLinear.id());
+    glBindTextureUnit(3, mIrradiance.id());
+    glBindSampler(3, mCubeLinear.id());
+    glBindImageTexture(0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, specular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups(width), groups(height), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    for (GLuint u : {units[0], units[1], units[2], 0u, 3u}) glBindSampler(u, 0);
+}
+
+void Environment::sky(const EnvironmentSettings& s, GLuint depth, GLuint hdr, int width, int height, const glm::mat4& invViewProj,
+                      const glm::vec3& eye, gl::GpuTimer& timer) const {
+    auto pass = timer.scope("environment.sky");
+    mSkyProg.use();
+    mSkyProg.set("uSize", glm::ivec2(width, height));
+    mSkyProg.set("uInvViewProj", invViewProj);
+    mSkyProg.set("uEye", eye);
+    mSkyProg.set("uIntensity", s.intensity);
+    mSkyProg.set("uRotation", s.rotation);
+    glBindTextureUnit(shared::kUnitDepth, depth);
+    glBindSampler(shared::kUnitDepth, mPoint.id());
+    glBindTextureUnit(0, mPrefiltered.id());
+    glBindSampler(0, mCubeLinear.id());
+    glBindImageTexture(0, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glDispatchCompute(groups(width), groups(height), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    glBindSampler(0, 0);
+    glBindSampler(shared::kUnitDepth, 0);
+}
+
+std::vector<DebugView> Environment::debugViews() const {
+    std::vector<DebugView> v;
+    v.push_back({"brdfLUT", mLUT.id(), GL_TEXTURE_2D, shared::kViewColor, kLUTSize, kLUTSize});
+    if (!ready()) return v;
+    v.push_back({"environment", mLatLong.id(), GL_TEXTURE_2D, shared::kViewColor, mImage.width, mImage.height});
+    v.push_back({"environment.prefiltered", mPrefiltered.id(), GL_TEXTURE_CUBE_MAP, shared::kViewCubeCross, mPrefiltered.width() * 4 / 3,
+                 mPrefiltered.width()});
+    v.push_back({"environment.irradiance", mIrradiance.id(), GL_TEXTURE_CUBE_MAP, shared::kViewCubeCross, kIrradianceSize * 4 / 3 * 4,
+                 kIrradianceSize * 4});
+    return v;
+}
+
+bool Environment::reloadShaders(std::string& log) {
+    bool ok = true;
+    for (gl::Program* p : {&mToCubeProg, &mPrefilterProg, &mLUTProg, &mShadeProg, &mSkyProg})
+        if (!p->reload()) {
+            ok = false;
+            log += p->log() + "\n";
+        }
+    if (ok) {
+        computeLUT();
+        mKey.clear();  // rebuild the maps with the new programs
+    }
+    return ok;
+}
+
+}  // namespace gi

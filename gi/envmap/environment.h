@@ -1,0 +1,105 @@
+// Environment lighting on the GPU (seed 004 chapter 2, with what engines do today): the map is
+// loaded on the CPU (gi/envmap/envmap_image.h), turned into a cube, and prefiltered into a
+// roughness mip chain; materials read it by roughness with the split-sum approximation.
+//
+// Passes (timers):
+//   environment.prefilter  only when the map or a prefilter setting changed: latlong -> cube
+//                          (source, full mips for filtered importance sampling), then one
+//                          dispatch per mip of the chain (shaders/envmap/prefilter.comp: GGX
+//                          importance sampling, or the seed's Beckmann cone sampling), and a
+//                          32^2 cosine-convolved irradiance cube; the time of each mip is kept
+//                          (mipTimes()) for the Roughness Mips panel and the benchmark
+//   environment.shade      technique none: the indirect term from the irradiance cube, the
+//                          indirect specular from the chain at the pixel's roughness
+//   environment.sky        the map where no surface is
+// The split-sum table (shaders/envmap/brdf_lut.comp, 128^2, GGX with the raster's visibility
+// term) is computed once at construction; the composite weighs all indirect specular with it.
+//
+// Choices where the seed is thin or wrong:
+//   - Mips: the seed samples every level from level 0 on the CPU (28 s for 200 samples); here
+//     each mip reads the source's mip chain at the level matching each sample's solid angle
+//     (Krivanek and Colbert's filtered importance sampling), so 64 samples are smooth.
+//   - The seed's roughness-to-mip table (Fig. 3.24) is the default of `mipRoughness`; the chain
+//     has one mip per entry, and shading interpolates the table piecewise linearly (Alg. 8).
+//     A table longer than the cube's halvings (the seed's 11 levels need 1024^2) keeps its first
+//     entries and puts its last on the last mip, so roughness 1 stays reachable.
+//   - Beckmann cone radius per mip: interpolated from the seed's table of roughness to sampling
+//     disk radius (tan theta); the seed multiplies by pi r^2 unnormalised, here the sum is
+//     divided by the count.
+//   - Diffuse: the seed reuses the prefiltered level for diffuse light; here a 32^2 irradiance
+//     cube evaluated from 9 SH coefficients projected on the CPU (a GGX lobe of roughness 1 is
+//     not a cosine lobe). Sampling it by cosine on the GPU instead spread the studio map's small
+//     lights across the terminator (dim sides 2-4x too bright against the path tracer).
+//   - The environment lights the scene only with technique none (the GI techniques do not
+//     gather it); with a technique it is still drawn as the sky.
+// Known limits: no shadowing or occlusion of environment light (besides SSAO on the diffuse
+// term); no local probes or parallax correction (as the seed).
+#pragma once
+
+#include "gi/envmap/envmap_image.h"
+#include "gi/envmap/envmap_settings.h"
+#include "gi/gl/handle.h"
+#include "gi/gl/shader.h"
+#include "gi/gl/timer.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace gi {
+
+struct DebugView;
+
+class Environment {
+public:
+    Environment();  // compiles the programs and computes the BRDF table; throws gi::Error
+
+    // Loads and prefilters when the file or a prefilter setting changed (or `presetFolder`
+    // resolution differs); does nothing when disabled. Throws gi::Error naming the file or key.
+    void prepare(const EnvironmentSettings& s, gl::GpuTimer& timer);
+    bool ready() const { return mPrefiltered.id() != 0; }
+
+    // technique none: fills `indirect` (E / pi) and `specular` from the maps.
+    void shade(const EnvironmentSettings& s, GLuint normal, GLuint material, GLuint depth, GLuint indirect, GLuint specular,
+               int width, int height, const glm::mat4& invViewProj, const glm::vec3& eye, gl::GpuTimer& timer) const;
+    // The sky into `hdr` where depth is 1.
+    void sky(const EnvironmentSettings& s, GLuint depth, GLuint hdr, int width, int height, const glm::mat4& invViewProj,
+             const glm::vec3& eye, gl::GpuTimer& timer) const;
+
+    GLuint brdfLUT() const { return mLUT.id(); }
+    GLuint prefiltered() const { return mPrefiltered.id(); }
+    GLuint irradiance() const { return mIrradiance.id(); }
+    const EnvironmentImage& image() const { return mImage; }
+
+    struct MipInfo {
+        float roughness = 0.0f;
+        int size = 0;        // texels per face
+        int samples = 0;     // per texel (0: copied)
+        float diskRadius = 0.0f;  // Beckmann cone only
+        double ms = 0.0;     // prefilter time of this mip, CPU clock around a finished dispatch
+    };
+    const std::vector<MipInfo>& mips() const { return mMips; }
+    double loadMs() const { return mLoadMs; }
+
+    size_t memoryBytes() const { return mSource.bytes() + mPrefiltered.bytes() + mIrradiance.bytes() + mLUT.bytes() + mLatLong.bytes(); }
+    static size_t estimateBytes(const EnvironmentSettings& s);
+    std::vector<DebugView> debugViews() const;
+    bool reloadShaders(std::string& log);
+
+    // The seed's roughness -> sampling disk radius (tan theta), interpolated (Fig. 3.24).
+    static float beckmannDiskRadius(float roughness);
+
+private:
+    gl::Program mToCubeProg, mPrefilterProg, mLUTProg, mShadeProg, mSkyProg;
+    gl::Sampler mLinear, mCubeLinear, mPoint;
+    gl::Texture mLatLong, mSource, mPrefiltered, mIrradiance, mLUT;
+    EnvironmentImage mImage;
+    std::vector<MipInfo> mMips;
+    double mLoadMs = 0.0;
+    std::string mKey;  // what the current maps were built from
+
+    void computeLUT();
+};
+
+}  // namespace gi
