@@ -222,6 +222,14 @@ int run(int argc, char** argv) {
     gi::json volumes = gi::json::array();
     for (const auto& v : renderer.techniqueVolumes())
         volumes.push_back({{"name", v.name}, {"format", v.format}, {"bytes", v.bytes}});
+    // The environment's prefilter, mip by mip (the Roughness Mips panel shows the same).
+    gi::json environment = nullptr;
+    if (frame.environment.enabled && renderer.environment().ready()) {
+        gi::json mips = gi::json::array();
+        for (const auto& m : renderer.environment().mips())
+            mips.push_back({{"roughness", m.roughness}, {"size", m.size}, {"samples", m.samples}, {"diskRadius", m.diskRadius}, {"ms", m.ms}});
+        environment = {{"source", renderer.environment().image().source}, {"loadMs", renderer.environment().loadMs()}, {"mips", mips}};
+    }
     gi::json stats = {{"input", input},
                       {"width", width},
                       {"height", height},
@@ -231,6 +239,7 @@ int run(int argc, char** argv) {
                       {"gpuMsTotal", total},
                       {"memoryBytes", renderer.memoryBytes()},
                       {"volumes", volumes},
+                      {"environment", environment},
                       {"scene", {{"name", scene.name}, {"triangles", scene.triangleCount()}, {"warnings", scene.warnings}}},
                       {"settings", gi::presetToJson(preset)}};
     if (views) {
