@@ -18,15 +18,10 @@ constexpr int kLUTSamples = 512;
 constexpr int kIrradianceSize = 32;
 constexpr int kMaxMips = 32;  // shade.comp's uMipRoughness[32]
 
+// Wrap S (the latlong's u) as given, T and R clamped.
 gl::Sampler makeSampler(GLenum minFilter, GLenum wrapS) {
-    GLuint s = 0;
-    glCreateSamplers(1, &s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GLint(minFilter));
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, minFilter == GL_NEAREST ? GL_NEAREST : GL_LINEAR);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GLint(wrapS));
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    return gl::Sampler(s);
+    return gl::createSampler({minFilter, minFilter == GL_NEAREST ? GLenum(GL_NEAREST) : GLenum(GL_LINEAR), wrapS, GL_CLAMP_TO_EDGE,
+                              GL_CLAMP_TO_EDGE});
 }
 
 GLuint groups(int n) { return GLuint((n + 7) / 8); }

@@ -61,6 +61,30 @@ inline Buffer createBuffer(size_t bytes, const void* data, GLbitfield flags = 0)
     return Buffer(id);
 }
 
+// A sampler object: filters, wrap modes (wrapT and wrapR follow wrapS unless given), and depth
+// comparison (LEQUAL) for shadow samplers. The border colour stays GL's default, transparent black.
+struct SamplerDesc {
+    GLenum minFilter = GL_LINEAR;
+    GLenum magFilter = GL_LINEAR;
+    GLenum wrapS = GL_CLAMP_TO_EDGE;
+    GLenum wrapT = 0, wrapR = 0;  // 0: as wrapS
+    bool compare = false;
+};
+inline Sampler createSampler(const SamplerDesc& d) {
+    GLuint s = 0;
+    glCreateSamplers(1, &s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GLint(d.minFilter));
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GLint(d.magFilter));
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GLint(d.wrapS));
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GLint(d.wrapT ? d.wrapT : d.wrapS));
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_R, GLint(d.wrapR ? d.wrapR : d.wrapS));
+    if (d.compare) {
+        glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(s, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+    return Sampler(s);
+}
+
 inline Framebuffer createFramebuffer() {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);

@@ -74,12 +74,7 @@ LPV::LPV()
       mPropagateProg("lpv.propagate", {{GL_COMPUTE_SHADER, "lpv/propagate.comp"}}),
       mResolveProg("lpv.resolve", {{GL_COMPUTE_SHADER, "lpv/resolve.comp"}}),
       mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}) {
-    GLuint s = 0;
-    glCreateSamplers(1, &s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glSamplerParameteri(s, w, GL_CLAMP_TO_EDGE);
-    mLinear = gl::Sampler(s);
+    mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
 }
 
 LPV::~LPV() = default;

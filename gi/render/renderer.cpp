@@ -55,18 +55,7 @@ size_t GPUScene::estimateBytes(const Scene& scene) {
 namespace {
 
 gl::Sampler makeSampler(GLenum minFilter, GLenum magFilter, GLenum wrap, bool compare = false) {
-    GLuint s = 0;
-    glCreateSamplers(1, &s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, minFilter);
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, magFilter);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, wrap);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, wrap);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_R, wrap);
-    if (compare) {
-        glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        glSamplerParameteri(s, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    }
-    return gl::Sampler(s);
+    return gl::createSampler({minFilter, magFilter, wrap, 0, 0, compare});
 }
 
 constexpr size_t kGBufferBytesPerPixel = 4 + 8 + 4 + 8 + 4;  // albedo, normal, material, emissive, depth

@@ -72,13 +72,7 @@ SSAO::SSAO()
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mEmptyVAO = gl::VertexArray(vao);
-    GLuint s = 0;
-    glCreateSamplers(1, &s);
-    mPointSampler = gl::Sampler(s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    mPointSampler = gl::createSampler({GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE});
 }
 
 size_t SSAO::estimateBytes(int width, int height) {

@@ -33,16 +33,7 @@ bool shOn(const VCTSettings& s) { return s.sh && s.mode == VCTMode::Dense; }
 // Positive remainder, for toroidal texel offsets.
 glm::ivec3 wrapOf(const glm::ivec3& origin, int res) { return ((origin % res) + res) % res; }
 
-gl::Sampler makeSampler(GLenum wrap, GLenum minFilter) {
-    GLuint s = 0;
-    glCreateSamplers(1, &s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GLint(minFilter));
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glSamplerParameteri(s, w, GLint(wrap));
-    const float border[4] = {0, 0, 0, 0};
-    glSamplerParameterfv(s, GL_TEXTURE_BORDER_COLOR, border);
-    return gl::Sampler(s);
-}
+gl::Sampler makeSampler(GLenum wrap, GLenum minFilter) { return gl::createSampler({minFilter, GL_LINEAR, wrap}); }
 
 }  // namespace
 

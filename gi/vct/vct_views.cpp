@@ -78,11 +78,7 @@ VoxelView::VoxelView() : mProgram(gl::fullscreenProgram("vct.voxelView", "vct/vo
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mVAO = gl::VertexArray(vao);
-    GLuint sampler = 0;
-    glCreateSamplers(1, &sampler);
-    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    mNearest = gl::Sampler(sampler);
+    mNearest = gl::createSampler({GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, GL_REPEAT});
 }
 
 void VoxelView::render(const std::vector<VoxelGridView>& grids, const VoxelViewParams& params, GLuint framebuffer, int width,

@@ -15,18 +15,7 @@ constexpr int kMaxLights = 4;          // march.comp's kVolumeMaxLights
 constexpr GLuint kUnitShadow2D = 9;    // march.comp's bindings
 constexpr GLuint kUnitShadowCube = 13;
 
-gl::Sampler makeSampler(GLenum filter, bool compare) {
-    GLuint s = 0;
-    glCreateSamplers(1, &s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, GLint(filter));
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, GLint(filter));
-    for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glSamplerParameteri(s, w, GL_CLAMP_TO_EDGE);
-    if (compare) {
-        glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        glSamplerParameteri(s, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    }
-    return gl::Sampler(s);
-}
+gl::Sampler makeSampler(GLenum filter, bool compare) { return gl::createSampler({filter, filter, GL_CLAMP_TO_EDGE, 0, 0, compare}); }
 
 glm::ivec2 marchSize(const FrameSettings& fs) {
     float s = fs.volumetric.resolutionScale;
