@@ -1,6 +1,6 @@
 // Environment lighting: loading and the latlong convention, the prefiltered chain (a constant
 // map stays constant at every mip, for both lobes, and so does the irradiance cube), the
-// split-sum table against Karis's analytic fit, the sky and its rotation, and errors that name
+// split-sum table against a brute-force quadrature, the sky and its rotation, and errors that name
 // the file.
 #include "gi/envmap/environment.h"
 #include "common/ggx.h"

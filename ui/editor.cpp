@@ -446,16 +446,13 @@ uint8_t Editor::roughnessMipsPanel() {
         wrappedText(kErrorColor, "the last change failed, the chain shown is the previous one: " + mFrameError);
     }
 
-    // A cube of cubeSize has 1 + log2(cubeSize) mips, at most 32 (what the shading pass reads).
-    // A longer table keeps its first entries and puts its last on the last mip (as
-    // gi/envmap/environment.h says): the mip each entry feeds, -1 for a skipped entry.
-    const int fit = std::min(1 + int(std::floor(std::log2(double(std::max(s.cubeSize, 1))))), 32);
+    // How many mips the cube can hold, and the mip each entry feeds (-1: skipped), by the rule
+    // the prefilter uses (Environment::chainMipOfEntry).
+    EnvironmentSettings full = s;
+    full.mipRoughness.assign(32, 0.0f);
+    const int fit = Environment::chainMipCount(full);
     std::vector<float>& table = s.mipRoughness;
-    auto mipOf = [&](int entry) {
-        const int n = int(table.size());
-        if (n <= fit || entry < fit - 1) return entry;
-        return entry == n - 1 ? fit - 1 : -1;
-    };
+    auto mipOf = [&](int entry) { return Environment::chainMipOfEntry(s, entry); };
     const bool cone = s.distribution == PrefilterDistribution::BeckmannCone;
     const std::vector<Environment::MipInfo> built = env.ready() ? env.mips() : std::vector<Environment::MipInfo>{};
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingStretchProp;

@@ -30,10 +30,17 @@ double nowMs() { return std::chrono::duration<double, std::milli>(std::chrono::s
 
 int fullMipCount(int size) { return 1 + int(std::floor(std::log2(double(std::max(size, 1))))); }
 
-// How many mips the chain can have: one per table entry, no more than the cube halves.
-int chainMips(const EnvironmentSettings& s) { return std::min({int(s.mipRoughness.size()), fullMipCount(s.cubeSize), kMaxMips}); }
-
 }  // namespace
+
+int Environment::chainMipCount(const EnvironmentSettings& s) {
+    return std::min({int(s.mipRoughness.size()), fullMipCount(s.cubeSize), kMaxMips});
+}
+
+int Environment::chainMipOfEntry(const EnvironmentSettings& s, int entry) {
+    int n = int(s.mipRoughness.size()), mips = chainMipCount(s);
+    if (n <= mips || entry < mips - 1) return entry;
+    return entry == n - 1 ? mips - 1 : -1;
+}
 
 float Environment::beckmannDiskRadius(float roughness) {
     // Seed 004 Fig. 3.24: roughness -> sampling disk radius tan(theta).
@@ -84,13 +91,9 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
         }
         return;
     }
-    // Rebuilt when anything that shapes the maps changed (intensity and rotation apply at lookup).
-    json key = toJson(s);
-    key.erase("intensity");
-    key.erase("rotation");
-    key.erase("skybox");
-    key.erase("enabled");
-    std::string k = key.dump();
+    // Rebuilt when a setting the maps are built from changed (the table's Reallocate fields);
+    // intensity, rotation and skybox apply at lookup.
+    std::string k = toJson(s, Cost::Reallocate).dump();
     if (k == mKey) return;
     mKey.clear();
     auto pass = timer.scope("environment.prefilter");
@@ -105,7 +108,7 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
         std::copy_n(&mImage.rgb[size_t(mImage.height - 1 - y) * row], row, &flipped[size_t(y) * row]);
     glTextureSubImage2D(mLatLong.id(), 0, 0, 0, mImage.width, mImage.height, GL_RGB, GL_FLOAT, flipped.data());
 
-    int size = s.cubeSize, levels = fullMipCount(size), mips = chainMips(s);
+    int size = s.cubeSize, levels = fullMipCount(size), mips = chainMipCount(s);
     mSource = gl::Texture::createCube(GL_RGBA16F, size, levels);
     mToCubeProg.use();
     mToCubeProg.set("uSize", size);
@@ -140,8 +143,9 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
     };
     // A table longer than the cube's halvings keeps its first entries and its last (so the
     // roughest lobe stays reachable): 9 mips of a 256^2 cube take 0 ... 0.5 and 1 of the seed's 11.
-    std::vector<float> table(s.mipRoughness.begin(), s.mipRoughness.begin() + mips);
-    table.back() = s.mipRoughness.back();
+    std::vector<float> table(size_t(mips), 0.0f);
+    for (int e = 0; e < int(s.mipRoughness.size()); ++e)
+        if (int m = chainMipOfEntry(s, e); m >= 0) table[size_t(m)] = s.mipRoughness[size_t(e)];
     for (int m = 0; m < mips; ++m) {
         MipInfo info;
         info.roughness = table[size_t(m)];

@@ -87,6 +87,12 @@ public:
     std::vector<DebugView> debugViews() const;
     bool reloadShaders(std::string& log);
 
+    // The chain the settings give: its mip count (one per mipRoughness entry, at most the cube's
+    // halvings and 32), and the mip each table entry feeds, -1 for an entry skipped because the
+    // table is longer than the chain (the first entries are kept and the last goes on the last mip).
+    static int chainMipCount(const EnvironmentSettings& s);
+    static int chainMipOfEntry(const EnvironmentSettings& s, int entry);
+
     // The seed's roughness -> sampling disk radius (tan theta), interpolated (Fig. 3.24).
     static float beckmannDiskRadius(float roughness);
 

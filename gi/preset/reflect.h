@@ -154,6 +154,17 @@ json toJson(const S& s) {
     return j;
 }
 
+// The fields whose change costs `cost` (e.g. Cost::Reallocate: what GPU resources are built
+// from), as toJson writes them: a key for "rebuild when these changed".
+template <Settings S>
+json toJson(const S& s, Cost cost) {
+    json j = json::object();
+    const_cast<S&>(s).visit([&](auto& field, const FieldMeta& m) {
+        if (any(m.cost, cost)) j[m.key] = detail::write(field);
+    });
+    return j;
+}
+
 // Reads `j` into `s`, field by field. Keys absent from `j` keep their current values. Unknown
 // keys, wrong types, non-finite and out-of-range numbers throw gi::Error naming
 // "<context>: key '<prefix><key>'". All fields are validated before any is assigned, so `s` is

@@ -81,6 +81,7 @@ Renderer::Renderer()
     mShadowSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, true);
     mMaterialSampler = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
     mLUTSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    mMipPointSampler = makeSampler(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
     glSamplerParameterf(mMaterialSampler.id(), GL_TEXTURE_MAX_ANISOTROPY, 4.0f);
     // Software rasterisers defer draws: serialise the pass timers there (gi/gl/timer.h).
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -582,13 +583,11 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     GLuint units[3] = {GLuint(kUnitSource), 0, 0};
     int count = 1;
     GLuint sampler = mPointSampler.id();
-    gl::Sampler cubeSampler;
     GLint depthBits = 0;
     if (view.target == GL_TEXTURE_CUBE_MAP) {
         units[0] = kUnitSourceCube;
         // Cube views show one mip (`level`), nearest texels: the point sampler has no mips.
-        cubeSampler = makeSampler(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
-        sampler = cubeSampler.id();
+        sampler = mMipPointSampler.id();
         if (view.texture) glGetTextureLevelParameteriv(view.texture, 0, GL_TEXTURE_DEPTH_SIZE, &depthBits);
     } else if (view.target == GL_TEXTURE_3D && (view.mode == kViewVoxelPacked || view.mode == kViewVoxelPackedNormal)) {
         units[0] = kUnitSourceU3D;

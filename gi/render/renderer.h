@@ -153,6 +153,7 @@ private:
     gl::Program mGBufferProg, mShadowProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
     gl::VertexArray mEmptyVAO;
     gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler, mLUTSampler;
+    gl::Sampler mMipPointSampler;  // views of one mip (cube maps): nearest texels of the chosen level
     gl::Texture mWhite;
 
     int mWidth = 0, mHeight = 0;

@@ -1,5 +1,7 @@
 #include "gi/vct/vct.h"
 
+#include "gi/render/light_uniforms.h"
+
 #include "common/shared.h"
 #include "gi/render/renderer.h"
 #include "gi/util/error.h"
@@ -277,26 +279,9 @@ void VCT::inject(const FrameContext& ctx) {
             mInjectProg.set("uLightCount", count);
             mInjectProg.set("uAccumulate", first > 0 ? 1 : 0);
             for (int i = 0; i < count; ++i) {
-                const LightSettings& light = lights[first + size_t(i)];
                 const ShadowMapView& sm = ctx.shadows[first + size_t(i)];
-                std::string a = "[" + std::to_string(i) + "]";
-                glm::vec3 dir = glm::length(light.direction) > 1e-8f ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
-                mInjectProg.set(("uLightType" + a).c_str(), int(light.type));
-                mInjectProg.set(("uLightColor" + a).c_str(), light.color * light.intensity);
-                mInjectProg.set(("uLightPos" + a).c_str(), light.position);
-                mInjectProg.set(("uLightDir" + a).c_str(), dir);
-                mInjectProg.set(("uLightRange" + a).c_str(), light.range);
-                mInjectProg.set(("uLightCos" + a).c_str(),
-                                glm::vec2(std::cos(glm::radians(std::min(light.innerConeDeg, light.outerConeDeg))),
-                                          std::cos(glm::radians(light.outerConeDeg))));
-                mInjectProg.set(("uShadowed" + a).c_str(), sm.depth ? 1 : 0);
-                mInjectProg.set(("uShadowViewProj" + a).c_str(), sm.viewProj);
-                mInjectProg.set(("uShadowFar" + a).c_str(), sm.far);
-                GLuint unit = GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i);
-                if (sm.depth) {
-                    glBindTextureUnit(unit, sm.depth);
-                    glBindSampler(unit, mShadowSampler.id());
-                }
+                setLightBatchUniforms(mInjectProg, i, lights[first + size_t(i)], sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
+                if (sm.depth) glBindSampler(GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i), mShadowSampler.id());
             }
             GLuint g = groups(mResolution, 4);
             glDispatchCompute(g, g, g);

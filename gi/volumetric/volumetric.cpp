@@ -1,6 +1,7 @@
 #include "gi/volumetric/volumetric.h"
 
 #include "common/shared.h"
+#include "gi/render/light_uniforms.h"
 #include "gi/render/renderer.h"
 #include "gi/util/error.h"
 
@@ -100,24 +101,9 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
                 glBindTextureUnit(kUnitShadow2D + GLuint(i), 0);
                 glBindTextureUnit(kUnitShadowCube + GLuint(i), 0);
             }
-            for (int i = 0; i < n; ++i) {
-                const LightSettings& l = fs.lights[first + size_t(i)];
-                std::string k = "[" + std::to_string(i) + "]";
-                glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
-                mMarchProg.set(("uLightType" + k).c_str(), int(l.type));
-                mMarchProg.set(("uLightColor" + k).c_str(), l.color * l.intensity);
-                mMarchProg.set(("uLightPos" + k).c_str(), l.position);
-                mMarchProg.set(("uLightDir" + k).c_str(), dir);
-                mMarchProg.set(("uLightRange" + k).c_str(), l.range);
-                mMarchProg.set(("uLightCos" + k).c_str(),
-                               glm::vec2(std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg))),
-                                         std::cos(glm::radians(std::min(l.outerConeDeg, 90.0f)))));
-                const ShadowMapView& sm = in.shadows[first + size_t(i)];
-                mMarchProg.set(("uShadowed" + k).c_str(), sm.depth ? 1 : 0);
-                mMarchProg.set(("uShadowViewProj" + k).c_str(), sm.viewProj);
-                mMarchProg.set(("uShadowFar" + k).c_str(), sm.far);
-                if (sm.depth) glBindTextureUnit((sm.cube ? kUnitShadowCube : kUnitShadow2D) + GLuint(i), sm.depth);
-            }
+            for (int i = 0; i < n; ++i)
+                setLightBatchUniforms(mMarchProg, i, fs.lights[first + size_t(i)], in.shadows[first + size_t(i)], kUnitShadow2D,
+                                      kUnitShadowCube);
             glDispatchCompute(groups(mWidth), groups(mHeight), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }

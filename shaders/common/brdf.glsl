@@ -5,18 +5,6 @@ const float kPi = 3.14159265358979;
 
 #include "common/ggx.h"
 
-// The split-sum's directional albedo of the GGX lobe, F0 * A + B, from Karis's analytic fit
-// ("Physically Based Shading on Mobile", 2014): weighs prefiltered specular radiance (VCT's
-// specular cone) without a lookup table.
-vec3 envBRDFApprox(vec3 f0, float roughness, float NoV) {
-    const vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
-    const vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
-    vec4 r = roughness * c0 + c1;
-    float a004 = min(r.x * r.x, exp2(-9.28 * NoV)) * r.x + r.y;
-    vec2 ab = vec2(-1.04, 1.04) * a004 + r.zw;
-    return f0 * ab.x + ab.y;
-}
-
 // BRDF times cos(theta_l) for one light direction. Returns radiance per unit irradiance.
 vec3 evalBRDFCos(vec3 N, vec3 V, vec3 L, vec3 baseColor, float metallic, float roughness, bool specular) {
     float NoL = dot(N, L);
