@@ -13,14 +13,17 @@
 #include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
+#include "gi/util/progress.h"
 #include "gi/scene/camera.h"
 #include "gi/vct/vct_views.h"
 #include "gi/volumetric/phase_plot.h"
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <filesystem>
 #include <iostream>
 #include <unistd.h>
@@ -50,16 +53,48 @@ void printSettings(bool asJson) {
     }
 }
 
-// The cached reference for this frame, with a progress line on a terminal.
+// Progress of long work on stderr, terminal or not: on a terminal one line redrawn in place,
+// elsewhere (a log, a pipe, CI) a new line at most about once a second, and the last one.
+// `quietIfShort`: say nothing about work that is over within a second (a default prefilter).
+gi::ProgressSink progressPrinter(bool quietIfShort) {
+    struct State {
+        bool tty = isatty(fileno(stderr));
+        bool printed = false;
+        double lastPrint = -1e9;
+    };
+    auto state = std::make_shared<State>();
+    return [state, quietIfShort](const gi::ProgressUpdate& u) {
+        bool last = u.done >= u.total;
+        bool due = u.seconds - state->lastPrint >= 1.0 && (!quietIfShort || u.seconds >= 1.0);
+        if (last) due = state->printed || !quietIfShort || u.seconds >= 1.0;
+        if (!due) return;
+        std::string line = "gi-render: " + gi::formatProgress(u);
+        if (state->tty)
+            std::fprintf(stderr, "\r%-100s%s", line.c_str(), last ? "\n" : "");
+        else
+            std::fprintf(stderr, "%s\n", line.c_str());
+        std::fflush(stderr);
+        state->printed = !last;
+        state->lastPrint = u.seconds;
+    };
+}
+
+// The cached reference for this frame; a fresh one reports its progress after each pass.
 gi::CachedReference referenceFor(const gi::Scene& scene, const gi::FrameSettings& frame, const gi::ReferenceSettings& rs,
                                  const char* what) {
-    bool tty = isatty(fileno(stderr));
-    gi::CachedReference ref = gi::cachedReference(scene, frame, rs, [&](int done, int total) {
-        if (tty) std::fprintf(stderr, "\r%s: %d / %d samples per pixel", what, done, total);
+    gi::ProgressSink print = progressPrinter(false);
+    auto start = std::chrono::steady_clock::now();
+    return gi::cachedReference(scene, frame, rs, [&](int done, int total) {
+        gi::ProgressUpdate u;
+        u.task = what;
+        u.done = done;
+        u.total = total;
+        u.unit = "spp";
+        u.fraction = double(done) / double(std::max(total, 1));
+        u.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        print(u);
         return true;
     });
-    if (tty && !ref.fromCache) std::fprintf(stderr, "\n");
-    return ref;
 }
 
 // `text` (digits and '.') as seven-segment strokes, its bottom-left corner at (x, y), y up.
@@ -189,7 +224,7 @@ int run(int argc, char** argv) {
     for (const auto& s : sets) gi::applySetting(preset, s);
     if (spp > 0) preset.reference.spp = spp;
 
-    gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder);
+    gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder, preset.render.memoryBudgetMB);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "gi-render: warning: %s: %s\n", scene.name.c_str(), w.c_str());
     if (preset.lightsFromScene && scene.lights.empty())
         std::fprintf(stderr, "gi-render: warning: %s has no lights and the preset names none; a default sun is used\n",
@@ -198,12 +233,21 @@ int run(int argc, char** argv) {
     if (frame.technique == gi::TechniqueKind::LPV)
         if (std::string note = gi::lpvIgnoredLights(frame.lights); !note.empty())
             std::fprintf(stderr, "gi-render: warning: %s\n", note.c_str());
-    gi::Renderer::checkBudget(frame, scene);  // refuse before any GL allocation
+    gi::Renderer::checkBudget(frame, scene);  // refuse before any GL allocation (memory, prefilter time)
+    // The references this run traces (those not cached) must fit the time budget too.
+    gi::ReferenceSettings indirectSettings = preset.reference;
+    indirectSettings.mode = gi::ReferenceMode::Indirect;
+    if (reference || score) {
+        int fresh = !gi::referenceCached(scene, frame, preset.reference);
+        if (score) fresh += !gi::referenceCached(scene, frame, indirectSettings);
+        gi::checkReferenceTimeBudget(frame, preset.reference, fresh);
+    }
 
     fs::create_directories(outDir);
     gi::EGLContextHeadless context;
     gi::Renderer renderer;
     renderer.setScene(scene);
+    renderer.setProgressSink(progressPrinter(true));
     for (int f = 0; f < frames; ++f) renderer.render(frame);
     renderer.timer().resolve(true);
     if (gi::gl::debugErrorCount() > 0) throw gi::Error("OpenGL reported errors while rendering (see above)");
@@ -289,8 +333,6 @@ int run(int argc, char** argv) {
         gi::writePNGTopFirst(out / "reference.png", width, height, gi::encodeSRGB8(gi::toneMapped(full.image, frame.toneMap)));
         stats["reference"] = referenceStats(full, preset.reference);
         if (score) {
-            gi::ReferenceSettings indirectSettings = preset.reference;
-            indirectSettings.mode = gi::ReferenceMode::Indirect;
             gi::CachedReference indirectRef = referenceFor(scene, frame, indirectSettings, "indirect reference");
             stats["referenceIndirect"] = referenceStats(indirectRef, indirectSettings);
             gi::RenderScoreInputs in{&image, &full.image, &indirect, &indirectRef.image, frame.toneMap};

@@ -3,7 +3,8 @@
 # the main job or the whole test suite.
 #   scripts/quickstart.sh run   the editor on the default preset; with no display, a headless
 #                               render of that preset (prints where the image is)
-#   scripts/quickstart.sh test  every test (ctest), as CI runs it
+#   scripts/quickstart.sh test  every test (ctest), as CI runs it, after the sanitizer build's
+#                               tests and a two-minute fuzz run (tests/sanitize.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -15,6 +16,8 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --parallel "$(nproc)"
 
 if [ "$mode" = test ]; then
+  # The input-handling code under AddressSanitizer and UBSan, and a two-minute fuzz run.
+  bash tests/sanitize.sh 120
   cd build
   exec ctest --output-on-failure --parallel "$(nproc)" --timeout 900
 fi

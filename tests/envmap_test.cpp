@@ -12,7 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 namespace gi {
@@ -84,6 +87,137 @@ TEST(EnvironmentImage, SixFaceCubeMapLoads) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("sky_nz.png"), std::string::npos) << e.what();
     }
+}
+
+// A Radiance header of the given size (`-Y height +X width`) and then `body` bytes.
+void writeRadiance(const std::filesystem::path& path, const std::string& size, const std::string& body = {}) {
+    std::ofstream f(path, std::ios::binary);
+    f << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" << size << "\n" << body;
+}
+
+// The message loading `file` fails with ("" when it loads); a crash fails the whole test binary.
+std::string loadError(const std::string& file, size_t budgetBytes = kDefaultEnvironmentBudgetBytes) {
+    try {
+        loadEnvironment(file, {}, budgetBytes);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return {};
+}
+
+#define EXPECT_ERROR_NAMES(message, file, problem)                                                          \
+    do {                                                                                                   \
+        std::string m_ = (message);                                                                        \
+        EXPECT_NE(m_.find(file), std::string::npos) << "the file is not named: " << m_;                   \
+        EXPECT_NE(m_.find(problem), std::string::npos) << "'" << (problem) << "' is not said: " << m_;     \
+        EXPECT_EQ(m_.find('\n'), std::string::npos) << "not one line: " << m_;                            \
+    } while (0)
+
+// Bad map files are refused with one line naming the file and what is wrong, from the header,
+// before any pixel buffer exists (so a header claiming 10^12 pixels costs nothing).
+TEST(EnvironmentImage, BadFilesAreRefusedFromTheirHeader) {
+    std::filesystem::path dir = test::tempDir();
+    std::filesystem::create_directories(dir / "folder.hdr");
+    EXPECT_ERROR_NAMES(loadError((dir / "folder.hdr").string()), "folder.hdr", "is a folder");
+    { std::ofstream(dir / "empty.hdr"); }
+    EXPECT_ERROR_NAMES(loadError((dir / "empty.hdr").string()), "empty.hdr", "empty file");
+    { std::ofstream(dir / "notes.exr") << "these are notes, not pixels\n"; }
+    EXPECT_ERROR_NAMES(loadError((dir / "notes.exr").string()), "notes.exr", "cannot read environment map");
+    // Absurd sizes: past the largest texture, and within it but past the memory budget.
+    writeRadiance(dir / "huge.hdr", "-Y 1000000 +X 1000000", "abcd");
+    EXPECT_ERROR_NAMES(loadError((dir / "huge.hdr").string()), "huge.hdr", "1000000x1000000 is larger than 16384 px per side");
+    writeRadiance(dir / "big.hdr", "-Y 16000 +X 16000", "abcd");
+    EXPECT_ERROR_NAMES(loadError((dir / "big.hdr").string()), "big.hdr", "key 'render.memoryBudgetMB'");
+    writeRadiance(dir / "modest.hdr", "-Y 512 +X 1024", "abcd");
+    EXPECT_ERROR_NAMES(loadError((dir / "modest.hdr").string(), size_t(1) << 20), "modest.hdr",
+                       "needs 12 MiB, past the budget of 1 MiB (key 'render.memoryBudgetMB')");
+    // No pixels: zero or negative sizes, and a latlong one pixel wide.
+    writeRadiance(dir / "zero.hdr", "-Y 0 +X 0");
+    EXPECT_ERROR_NAMES(loadError((dir / "zero.hdr").string()), "zero.hdr", "no pixels");
+    writeRadiance(dir / "negative.hdr", "-Y -5 +X 10");
+    EXPECT_ERROR_NAMES(loadError((dir / "negative.hdr").string()), "negative.hdr", "no pixels");
+    writeRadiance(dir / "thin.hdr", "-Y 4 +X 1", std::string(16, char(128)));
+    EXPECT_ERROR_NAMES(loadError((dir / "thin.hdr").string()), "thin.hdr", "1 px wide");
+    // Truncated: a 16x8 flat (unencoded) RGBE file with 3 of its 8 rows, and an RLE one cut in its
+    // first row's header; with all 8 rows it loads.
+    std::string row(16 * 4, char(0));
+    for (size_t i = 0; i < row.size(); i += 4) row[i] = row[i + 1] = row[i + 2] = char(128), row[i + 3] = char(129);  // 1.0
+    writeRadiance(dir / "truncated.hdr", "-Y 8 +X 16", row + row + row);
+    EXPECT_ERROR_NAMES(loadError((dir / "truncated.hdr").string()), "truncated.hdr", "cannot decode environment map");
+    writeRadiance(dir / "truncated_rle.hdr", "-Y 8 +X 64", std::string("\x02\x02\x00\x40\xc0", 5));
+    EXPECT_ERROR_NAMES(loadError((dir / "truncated_rle.hdr").string()), "truncated_rle.hdr", "cannot decode environment map");
+    writeRadiance(dir / "whole.hdr", "-Y 8 +X 16", row + row + row + row + row + row + row + row);
+    EnvironmentImage whole = loadEnvironment((dir / "whole.hdr").string());
+    EXPECT_EQ(whole.width, 16);
+    EXPECT_EQ(whole.height, 8);
+    EXPECT_NEAR(whole.texel(3, 5).g, 1.0f, 1e-6f);
+}
+
+// EXR: a data window far past the file's end, or a huge one the file seems to hold, is refused;
+// a cut file too; more than four channels load as RGB from the first three.
+TEST(EnvironmentImage, BadEXRFilesAreRefused) {
+    std::filesystem::path dir = test::tempDir();
+    auto writeEXRChannels = [&](const std::filesystem::path& path, int channels) {
+        OIIO::ImageSpec spec(4, 2, channels, OIIO::TypeDesc::FLOAT);
+        std::vector<float> px(size_t(4 * 2 * channels));
+        for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % size_t(channels) + 1);  // channel c holds c + 1
+        auto out = OIIO::ImageOutput::create(path.string());
+        ASSERT_TRUE(out && out->open(path.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, px.data()) && out->close());
+    };
+    writeEXRChannels(dir / "five.exr", 5);
+    EnvironmentImage five = loadEnvironment((dir / "five.exr").string());
+    EXPECT_EQ(five.texel(1, 1), glm::vec3(1, 2, 3));
+    writeEXRChannels(dir / "grey.exr", 2);
+    EXPECT_EQ(loadEnvironment((dir / "grey.exr").string()).texel(0, 0), glm::vec3(1, 1, 1)) << "grey + alpha repeats grey";
+
+    writeEXRChannels(dir / "small.exr", 3);
+    std::string bytes;
+    {
+        std::ifstream in(dir / "small.exr", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // The header's dataWindow attribute: name, type, size 16, then xMin yMin xMax yMax.
+    size_t at = bytes.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(at, std::string::npos);
+    at += 17 + 4;
+    auto withWindow = [&](int32_t xMax, int32_t yMax, size_t padding) {
+        std::string b = bytes;
+        std::memcpy(&b[at + 8], &xMax, 4);
+        std::memcpy(&b[at + 12], &yMax, 4);
+        return b + std::string(padding, '\0');
+    };
+    std::ofstream(dir / "window_past_end.exr", std::ios::binary) << withWindow(999999, 999999, 0);
+    EXPECT_ERROR_NAMES(loadError((dir / "window_past_end.exr").string()), "window_past_end.exr", "cannot read environment map");
+    // With room for the line offset table, OpenEXR opens it as 16000x16000: 6 GB to decode.
+    std::ofstream(dir / "window_huge.exr", std::ios::binary) << withWindow(15999, 15999, 16000 * 8);
+    EXPECT_ERROR_NAMES(loadError((dir / "window_huge.exr").string()), "window_huge.exr", "key 'render.memoryBudgetMB'");
+    std::ofstream(dir / "cut.exr", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    std::string cut = loadError((dir / "cut.exr").string());
+    EXPECT_ERROR_NAMES(cut, "cut.exr", "environment map");
+}
+
+// Cube faces are checked from their headers, all six before any is decoded.
+TEST(EnvironmentImage, BadCubeFacesAreRefused) {
+    std::filesystem::path dir = test::tempDir();
+    std::string row(8 * 4, char(0));
+    for (size_t i = 0; i < row.size(); i += 4) row[i] = row[i + 1] = row[i + 2] = char(128), row[i + 3] = char(129);
+    std::string face;
+    for (int y = 0; y < 8; ++y) face += row;
+    for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"}) writeRadiance(dir / ("cube_" + std::string(f) + ".hdr"), "-Y 8 +X 8", face);
+    EXPECT_EQ(loadEnvironment((dir / "cube_{face}.hdr").string()).width, 32);
+    const std::string pattern = (dir / "cube_{face}.hdr").string();
+    writeRadiance(dir / "cube_py.hdr", "-Y 8 +X 16", face + face);
+    EXPECT_ERROR_NAMES(loadError(pattern), "cube_py.hdr", "square and of one size (px is 8x8, this face 16x8)");
+    writeRadiance(dir / "cube_py.hdr", "-Y 4 +X 4", face);
+    EXPECT_ERROR_NAMES(loadError(pattern), "cube_py.hdr", "square and of one size");
+    writeRadiance(dir / "cube_py.hdr", "-Y 8 +X 8", face);
+    for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"}) writeRadiance(dir / ("cube_" + std::string(f) + ".hdr"), "-Y 9000 +X 9000");
+    EXPECT_ERROR_NAMES(loadError(pattern), "cube_px.hdr", "larger than 16384 px per side");
+    for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"}) writeRadiance(dir / ("cube_" + std::string(f) + ".hdr"), "-Y 4000 +X 4000");
+    EXPECT_ERROR_NAMES(loadError(pattern), "cube_{face}.hdr", "key 'render.memoryBudgetMB'");
+    std::filesystem::remove(dir / "cube_nz.hdr");
+    std::filesystem::create_directories(dir / "cube_nz.hdr");
+    EXPECT_ERROR_NAMES(loadError(pattern), "cube_nz.hdr", "is a folder");
 }
 
 class EnvironmentGL : public test::GLTest {};
@@ -213,6 +347,111 @@ TEST_F(EnvironmentGL, SkyShowsTheMapAndTurnsWithRotation) {
     EXPECT_NEAR(turned.r, behind.r, 0.05f * behind.r + 0.01f);
     fs.environment.enabled = false;
     EXPECT_EQ(centre(), glm::vec3(0.0f));
+}
+
+// The prefilter's time is estimated from its settings alone: the defaults take well under a
+// second, cubeSize 2048 with 4096 samples is refused past the default budget, naming the key,
+// the estimate, the settings and the budget; Renderer::checkBudget (gi-render and the editor
+// call it before any GL allocation) refuses it too.
+TEST(EnvironmentBudget, PrefilterPastTheTimeBudgetIsRefused) {
+    EnvironmentSettings s;
+    s.enabled = true;
+    EXPECT_LT(Environment::estimateSeconds(s), 1.0);
+    EXPECT_NO_THROW(Environment::checkTimeBudget(s, RenderSettings{}.timeBudgetSeconds));
+    // Only mips of roughness above 0 are sampled: 256^2's chain samples mips 1 to 8.
+    EXPECT_DOUBLE_EQ(Environment::estimateSamples(s), 6.0 * 64.0 * (128 * 128 + 64 * 64 + 32 * 32 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1));
+    s.cubeSize = 2048;
+    s.samples = 4096;
+    EXPECT_GT(Environment::estimateSeconds(s), 600.0);
+    FrameSettings fs;
+    fs.environment = s;
+    try {
+        Renderer::checkBudget(fs, 0);
+        ADD_FAILURE() << "a prefilter of 2048^2 x 4096 samples was not refused";
+    } catch (const Error& e) {
+        std::string m = e.what();
+        EXPECT_EQ(m.rfind("key 'render.timeBudgetSeconds': environment prefilter estimated at ", 0), 0u) << m;
+        EXPECT_NE(m.find(" s (cubeSize 2048, samples 4096) exceeds the budget of 600 s; lower environment.samples or "
+                         "environment.cubeSize, or raise render.timeBudgetSeconds"),
+                  std::string::npos)
+            << m;
+    }
+    fs.render.timeBudgetSeconds = 1e6f;
+    EXPECT_NO_THROW(Renderer::checkBudget(fs, 0));
+    fs.environment.enabled = false;
+    fs.render.timeBudgetSeconds = 1.0f;
+    EXPECT_NO_THROW(Renderer::checkBudget(fs, 0)) << "a disabled environment costs nothing";
+}
+
+TEST(Progress, LinesSayDoneTotalElapsedAndTimeLeft) {
+    ProgressUpdate u;
+    u.task = "reference";
+    u.done = 64;
+    u.total = 1024;
+    u.unit = "spp";
+    u.fraction = 64.0 / 1024.0;
+    u.seconds = 12.3;
+    EXPECT_EQ(formatProgress(u), "reference: 64 / 1024 spp, 12.3 s, ~3 min left");
+    u.done = u.total;
+    u.fraction = 1.0;
+    u.detail = "all";
+    EXPECT_EQ(formatProgress(u), "reference: 1024 / 1024 spp (all), 12.3 s");
+}
+
+// prepare() reports its progress to the sink, mip by mip, and refuses (before allocating) a
+// prefilter past render.timeBudgetSeconds or a map past render.memoryBudgetMB.
+TEST_F(EnvironmentGL, PrepareReportsProgressAndKeepsToTheBudgets) {
+    EnvironmentSettings s;
+    s.enabled = true;
+    s.file = "builtin:constant";
+    s.cubeSize = 64;
+    s.samples = 8;
+    gl::GpuTimer timer;
+    std::vector<ProgressUpdate> heard;
+    {
+        Environment env;
+        timer.beginFrame();
+        env.prepare(s, timer, RenderSettings{}, [&](const ProgressUpdate& u) { heard.push_back(u); });
+        timer.endFrame();
+        ASSERT_TRUE(env.ready());
+        ASSERT_FALSE(heard.empty());
+        EXPECT_EQ(heard.back().task, "environment prefilter");
+        EXPECT_EQ(heard.back().done, double(env.mips().size()));
+        EXPECT_EQ(heard.back().total, double(env.mips().size()));
+        EXPECT_DOUBLE_EQ(heard.back().fraction, 1.0);
+        for (size_t i = 1; i < heard.size(); ++i) EXPECT_GE(heard[i].fraction, heard[i - 1].fraction);
+    }
+    {
+        Environment env;
+        RenderSettings render;
+        render.timeBudgetSeconds = 1e-6f;
+        timer.beginFrame();
+        try {
+            env.prepare(s, timer, render);
+            ADD_FAILURE() << "a prefilter past the time budget ran";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("render.timeBudgetSeconds"), std::string::npos) << e.what();
+        }
+        timer.endFrame();
+        EXPECT_FALSE(env.ready());
+    }
+    {
+        std::filesystem::path file = test::tempDir() / "small.hdr";
+        writeRadiance(file, "-Y 8 +X 16", std::string(16 * 8 * 4, char(128)));
+        s.file = file.string();
+        Environment env;
+        RenderSettings render;
+        render.memoryBudgetMB = 0.001f;  // 1 KiB; decoding 16x8 takes 3 KiB
+        timer.beginFrame();
+        try {
+            env.prepare(s, timer, render);
+            ADD_FAILURE() << "a map past the memory budget loaded";
+        } catch (const Error& e) {
+            EXPECT_ERROR_NAMES(std::string(e.what()), "small.hdr", "render.memoryBudgetMB");
+        }
+        timer.endFrame();
+        EXPECT_FALSE(env.ready());
+    }
 }
 
 // A bad file is a one-line error naming it, raised by render (gi-render and the editor show it).

@@ -234,6 +234,68 @@ TEST(Reference, CacheStoresAndReloadsExactly) {
     EXPECT_EQ(first.image.rgb, second.image.rgb);
 }
 
+// A fresh reference estimated past render.timeBudgetSeconds is refused before it starts, with
+// one line naming the key, the estimate and the settings; a cached one costs nothing and is
+// never refused (the budget is not part of the key).
+TEST(Reference, TimeBudgetRefusesFreshReferencesNotCachedOnes) {
+    auto dir = test::tempDir();
+    setenv("GI_CACHE_DIR", dir.c_str(), 1);
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = frameSettings(Preset{}, scene, 16, 12);
+    ReferenceSettings rs;
+    rs.spp = 4;
+    EXPECT_FALSE(referenceCached(scene, fs, rs));
+    CachedReference first = cachedReference(scene, fs, rs);
+    EXPECT_TRUE(referenceCached(scene, fs, rs));
+    fs.render.timeBudgetSeconds = 1e-9f;
+    CachedReference again = cachedReference(scene, fs, rs);
+    EXPECT_TRUE(again.fromCache);
+    rs.spp = 8;
+    try {
+        cachedReference(scene, fs, rs);
+        ADD_FAILURE() << "a fresh reference past the time budget was rendered";
+    } catch (const Error& e) {
+        std::string m = e.what();
+        EXPECT_EQ(m.rfind("key 'render.timeBudgetSeconds': path-traced reference estimated at ", 0), 0u) << m;
+        EXPECT_NE(m.find(" s (16x12, 8 spp) exceeds the budget of 0 s; lower reference.spp (--spp) or the image size, or raise "
+                         "render.timeBudgetSeconds"),
+                  std::string::npos)
+            << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+    unsetenv("GI_CACHE_DIR");
+    EXPECT_FALSE(referenceCached(scene, fs, rs));
+    // The estimate grows with pixels and samples; the shipped defaults (640x360, 256 spp) fit the
+    // default budget, 1920x1080 at 65536 spp is far past it.
+    FrameSettings big = fs;
+    big.width = 1920;
+    big.height = 1080;
+    rs.spp = 65536;
+    EXPECT_GT(estimateReferenceSeconds(big, rs), 100.0 * RenderSettings{}.timeBudgetSeconds);
+    FrameSettings usual = fs;
+    usual.width = 640;
+    usual.height = 360;
+    EXPECT_LT(estimateReferenceSeconds(usual, ReferenceSettings{}), 0.5 * RenderSettings{}.timeBudgetSeconds);
+    EXPECT_NO_THROW(checkReferenceTimeBudget(big, rs, 0)) << "no fresh reference, nothing to refuse";
+}
+
+// A render reports after each pass (passes double: progress comes early), up to the total.
+TEST(Reference, ProgressAfterEachPassUpToTheTotal) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = frameSettings(Preset{}, scene, 8, 6);
+    ReferenceSettings rs;
+    rs.spp = 20;
+    std::vector<int> done;
+    PathTracer pt(scene);
+    ImageRGB img = pt.render(fs, rs, [&](int d, int total) {
+        EXPECT_EQ(total, 20);
+        done.push_back(d);
+        return true;
+    });
+    EXPECT_EQ(done, (std::vector<int>{1, 3, 7, 15, 20}));
+    EXPECT_EQ(img.width, 8);
+}
+
 TEST(Reference, AlphaMaskedSheetCastsNoShadowWhereCutOut) {
     // A plate whose texture is fully transparent must not shadow the floor.
     Scene s;

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <set>
 
@@ -178,6 +179,90 @@ TEST(RenderCLI, ScoreWritesMetricsAndMapsAndReusesTheReference) {
     ASSERT_EQ(onlyReference.exitCode, 0) << onlyReference.output;
     EXPECT_TRUE(std::filesystem::exists(dir / "c" / "reference.exr"));
     EXPECT_FALSE(readJSON(dir / "c" / "stats.json").contains("metrics"));
+}
+
+// Work estimated past render.timeBudgetSeconds is refused up front, in one line naming the key,
+// the estimate and what to change, before any GL work: a prefilter of 2048^2 x 4096 samples
+// (about 16 minutes on llvmpipe) and a fresh reference; a cached reference is never refused.
+TEST(RenderCLI, LongWorkPastTheTimeBudgetIsRefused) {
+    auto dir = test::tempDir();
+    auto oneLine = [](const std::string& output) {
+        std::string trimmed = output;
+        while (!trimmed.empty() && trimmed.back() == '\n') trimmed.pop_back();
+        return trimmed.find('\n') == std::string::npos;
+    };
+    auto start = std::chrono::steady_clock::now();
+    auto prefilter = test::runCommand(render(std::string(GI_PRESET_DIR) + "/environment_spheres_sky.json --width 128 --height 96"
+                                             " --set environment.cubeSize=2048 --set environment.samples=4096 --out " +
+                                             (dir / "prefilter").string()));
+    // Refused from the estimate, not after minutes of work (a generous bound, not a benchmark).
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 60.0);
+    EXPECT_NE(prefilter.exitCode, 0);
+    EXPECT_EQ(prefilter.output.rfind("gi-render: key 'render.timeBudgetSeconds': environment prefilter estimated at ", 0), 0u)
+        << prefilter.output;
+    EXPECT_NE(prefilter.output.find(" s (cubeSize 2048, samples 4096) exceeds the budget of 600 s; lower environment.samples or "
+                                    "environment.cubeSize, or raise render.timeBudgetSeconds"),
+              std::string::npos)
+        << prefilter.output;
+    EXPECT_TRUE(oneLine(prefilter.output)) << prefilter.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "prefilter" / "image.png"));
+
+    // 64x48 at 256 spp is estimated past a 1 s budget (and takes about a second): rendered with
+    // the default budget, then cached, it is not refused under the small one; 512 spp is.
+    std::string env = "GI_CACHE_DIR=" + (dir / "cache").string() + " ";
+    std::string args = std::string(GI_PRESET_DIR) + "/default.json --width 64 --height 48 --reference --out ";
+    auto fresh = test::runCommand(env + render(args + (dir / "a").string() + " --spp 256"));
+    ASSERT_EQ(fresh.exitCode, 0) << fresh.output;
+    auto cached = test::runCommand(env + render(args + (dir / "b").string() + " --spp 256 --set render.timeBudgetSeconds=1"));
+    ASSERT_EQ(cached.exitCode, 0) << cached.output;
+    EXPECT_TRUE(readJSON(dir / "b" / "stats.json")["reference"]["fromCache"].get<bool>());
+    auto refused = test::runCommand(env + render(args + (dir / "c").string() + " --spp 512 --set render.timeBudgetSeconds=1"));
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_EQ(refused.output.rfind("gi-render: key 'render.timeBudgetSeconds': path-traced reference estimated at ", 0), 0u)
+        << refused.output;
+    EXPECT_NE(refused.output.find(" s (64x48, 512 spp) exceeds the budget of 1 s; lower reference.spp (--spp) or the image size, or "
+                                  "raise render.timeBudgetSeconds"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_TRUE(oneLine(refused.output)) << refused.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "c" / "image.png")) << "refused before the raster image";
+}
+
+// Long work says how far it is on stderr even when stderr is no terminal (here a pipe): the
+// reference a line per pass (at most about one a second) and its last, the prefilter once it
+// has run a second; a prefilter over in a moment stays quiet.
+TEST(RenderCLI, ProgressLinesWhenStderrIsNotATerminal) {
+    auto dir = test::tempDir();
+    std::string env = "GI_CACHE_DIR=" + (dir / "cache").string() + " ";
+    auto reference = test::runCommand(env + render(std::string(GI_PRESET_DIR) + "/default.json --width 32 --height 24 --reference "
+                                                   "--spp 8 --out " + (dir / "a").string()));
+    ASSERT_EQ(reference.exitCode, 0) << reference.output;
+    EXPECT_NE(reference.output.find("gi-render: reference: 1 / 8 spp, "), std::string::npos) << reference.output;
+    EXPECT_NE(reference.output.find("gi-render: reference: 8 / 8 spp, "), std::string::npos) << reference.output;
+    EXPECT_EQ(reference.output.find('\r'), std::string::npos) << "no carriage returns into a pipe";
+
+    // Whether the prefilter speaks depends on how long it took here (stats.json's per-mip times):
+    // 128^2 at 2048 samples takes 2 to 4 s on llvmpipe, 32^2 at 8 a few ms.
+    std::string sky = std::string(GI_PRESET_DIR) + "/environment_spheres_sky.json --width 64 --height 48 --out ";
+    auto prefilterMs = [&](const std::filesystem::path& out) {
+        json stats = readJSON(out / "stats.json");
+        double ms = 0.0;
+        for (const json& m : stats["environment"]["mips"]) ms += m["ms"].get<double>();
+        return ms;
+    };
+    for (const auto& [name, sets] : {std::pair<std::string, std::string>{"quick", "cubeSize=32 --set environment.samples=8"},
+                                     {"slow", "cubeSize=128 --set environment.samples=2048"}}) {
+        auto r = test::runCommand(render(sky + (dir / name).string() + " --set environment." + sets));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        double ms = prefilterMs(dir / name);
+        if (ms > 1200.0) {
+            EXPECT_NE(r.output.find(name == "slow" ? "gi-render: environment prefilter: 8 / 8 mips, " : "gi-render: environment prefilter: "),
+                      std::string::npos)
+                << name << "\n" << r.output;
+        } else if (ms < 800.0) {
+            EXPECT_EQ(r.output.find("environment prefilter"), std::string::npos) << name << "\n" << r.output;
+        }
+    }
 }
 
 TEST(RenderCLI, ListSettings) {

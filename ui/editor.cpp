@@ -160,15 +160,16 @@ void Editor::apply(uint8_t cost) {
 }
 
 void Editor::installScene(Preset& p, bool resetView) {
-    Scene scene = loadScene(p.header.scene, p.folder);
+    Scene scene = loadScene(p.header.scene, p.folder, p.render.memoryBudgetMB);
     if (resetView) {
         p.camera = scene.cameras.empty() ? frameBounds(scene.bounds) : scene.cameras.front();
         p.camera.sceneCamera = -1;
         p.lightsFromScene = true;
         p.lights.clear();
     }
-    // Refuse a scene past the memory budget before uploading it.
-    Renderer::checkBudget(frameSettings(p, scene, mWidth, mHeight), scene);
+    // Refuse a scene past the memory budget before uploading it (a prefilter past the time
+    // budget is refused by the frame, so the preset still opens and its settings can be lowered).
+    Renderer::checkMemoryBudget(frameSettings(p, scene, mWidth, mHeight), GPUScene::estimateBytes(scene));
     mRenderer.setScene(scene);
     mScene = std::move(scene);
     mLoadedScene = p.header.scene;

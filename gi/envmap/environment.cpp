@@ -30,6 +30,18 @@ double nowMs() { return std::chrono::duration<double, std::milli>(std::chrono::s
 
 int fullMipCount(int size) { return 1 + int(std::floor(std::log2(double(std::max(size, 1))))); }
 
+// Prefilter throughput on Mesa 22.3 llvmpipe, 2 cores (the machines the suite runs on): GGX
+// samples (one textureLod each) per second over the sampled mips, from gi-render's stats.json
+// (environment.mips[].ms): 32 to 41 M/s on an idle machine (tests/bench/envmap_bench.sh: 256^2
+// at 64 and 200 samples, 1024^2 at 64), 15 to 29 M/s with a compile running beside (256^2 to
+// 1024^2, 64 to 2048 samples). The Beckmann cone costs about the same per sample. So cubeSize
+// 2048 at 4096 samples is some 16 minutes. A real GPU is far faster: there the estimate is
+// pessimistic, and render.timeBudgetSeconds is the setting to raise.
+constexpr double kPrefilterSamplesPerSecond = 35e6;
+// A dispatch is cut into bands of rows of about this much work, so progress comes while a large
+// mip runs (and a GPU driver's watchdog never sees one long dispatch).
+constexpr double kPrefilterSecondsPerDispatch = 0.5;
+
 }  // namespace
 
 int Environment::chainMipCount(const EnvironmentSettings& s) {
@@ -75,13 +87,43 @@ void Environment::computeLUT() {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
+std::vector<float> Environment::chainRoughness(const EnvironmentSettings& s) {
+    std::vector<float> table(size_t(chainMipCount(s)), 0.0f);
+    for (int e = 0; e < int(s.mipRoughness.size()); ++e)
+        if (int m = chainMipOfEntry(s, e); m >= 0) table[size_t(m)] = s.mipRoughness[size_t(e)];
+    return table;
+}
+
+double Environment::estimateSamples(const EnvironmentSettings& s) {
+    if (!s.enabled) return 0.0;
+    // Mips of roughness 0 are copies; every other texel of every face takes `samples` samples.
+    std::vector<float> table = chainRoughness(s);
+    double texels = 0.0;
+    for (size_t m = 0; m < table.size(); ++m)
+        if (table[m] > 0.0f) texels += 6.0 * std::pow(double(std::max(s.cubeSize >> m, 1)), 2.0);
+    return texels * double(s.samples);
+}
+
+double Environment::estimateSeconds(const EnvironmentSettings& s) { return estimateSamples(s) / kPrefilterSamplesPerSecond; }
+
+void Environment::checkTimeBudget(const EnvironmentSettings& s, double budgetSeconds) {
+    double seconds = estimateSeconds(s);
+    if (seconds <= budgetSeconds) return;
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "key 'render.timeBudgetSeconds': environment prefilter estimated at %.0f s (cubeSize %d, samples %d) exceeds the "
+                  "budget of %.0f s; lower environment.samples or environment.cubeSize, or raise render.timeBudgetSeconds",
+                  std::ceil(seconds), s.cubeSize, s.samples, budgetSeconds);
+    throw Error(buf);
+}
+
 size_t Environment::estimateBytes(const EnvironmentSettings& s) {
     if (!s.enabled) return 0;
     size_t face = size_t(s.cubeSize) * size_t(s.cubeSize) * 8 * 6;
     return face * 4 / 3 * 2 + size_t(kIrradianceSize) * kIrradianceSize * 8 * 6 + size_t(kLUTSize) * kLUTSize * 4;
 }
 
-void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
+void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, const RenderSettings& render, const ProgressSink& progress) {
     if (!s.enabled) {
         if (!mKey.empty()) {
             for (gl::Texture* t : {&mLatLong, &mSource, &mPrefiltered, &mIrradiance}) *t = gl::Texture();
@@ -95,10 +137,11 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
     // intensity, rotation and skybox apply at lookup.
     std::string k = toJson(s, Cost::Reallocate).dump();
     if (k == mKey) return;
+    checkTimeBudget(s, render.timeBudgetSeconds);  // before anything is loaded or allocated
     mKey.clear();
     auto pass = timer.scope("environment.prefilter");
     double t0 = nowMs();
-    if (mImage.source != s.file) mImage = loadEnvironment(s.file);
+    if (mImage.source != s.file) mImage = loadEnvironment(s.file, {}, render.memoryBudgetBytes());
     // Uploaded bottom row first, as every GL image here is (so the debug view shows the zenith at
     // the top); to_cube.comp reads v = 1 - latLongUV's v.
     mLatLong = gl::Texture::create2D(GL_RGB32F, mImage.width, mImage.height);
@@ -128,24 +171,56 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
     glBindTextureUnit(0, mSource.id());
     glBindSampler(0, mCubeLinear.id());
     mMips.clear();
-    auto dispatch = [&](const gl::Texture& dst, int level, int faceSize, int mode, float roughness, float disk, int samples) {
+    // Progress after each band of rows: the fraction is of the estimated samples.
+    const double totalSamples = std::max(estimateSamples(s), 1.0);
+    double samplesDone = 0.0;
+    const int mipsToReport = mips;
+    const double tPrefilter = nowMs();  // the time left is reckoned from the dispatches alone
+    // After each band of mip `mipsDone` and after each mip; the detail names the mip under way.
+    auto report = [&](int mipsDone) {
+        if (!progress) return;
+        ProgressUpdate u;
+        u.task = "environment prefilter";
+        u.done = mipsDone;
+        u.total = mipsToReport;
+        u.unit = "mips";
+        u.fraction = std::min(samplesDone / totalSamples, 1.0);
+        u.seconds = (nowMs() - tPrefilter) / 1000.0;
+        if (mipsDone < mipsToReport)
+            u.detail = "mip " + std::to_string(mipsDone) + ", " + std::to_string(std::max(size >> mipsDone, 1)) + "^2, " +
+                       std::to_string(s.samples) + " samples";
+        progress(u);
+    };
+    auto dispatch = [&](const gl::Texture& dst, int level, int faceSize, int mode, float roughness, float disk, int samples,
+                        int mip) {
         mPrefilterProg.set("uSize", faceSize);
         mPrefilterProg.set("uMode", mode);
         mPrefilterProg.set("uRoughness", roughness);
         mPrefilterProg.set("uDiskRadius", disk);
         mPrefilterProg.set("uSamples", samples);
         glBindImageTexture(0, dst.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        // Bands of rows (multiples of the 8-row work group) of about kPrefilterSecondsPerDispatch each.
+        bool sampled = mode != 2 && roughness > 0.0f;
+        double rowSamples = sampled ? 6.0 * double(faceSize) * double(samples) : 0.0;
+        int rows = faceSize;
+        if (rowSamples > 0.0)
+            rows = std::clamp(int(kPrefilterSamplesPerSecond * kPrefilterSecondsPerDispatch / rowSamples) / 8 * 8, 8, faceSize);
         double start = nowMs();
-        glDispatchCompute(groups(faceSize), groups(faceSize), 6);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        glFinish();
+        for (int row = 0; row < faceSize; row += rows) {
+            int band = std::min(rows, faceSize - row);
+            mPrefilterProg.set("uRowOffset", row);
+            glDispatchCompute(groups(faceSize), groups(band), 6);
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glFinish();
+            samplesDone += rowSamples * double(band);
+            if (mip >= 0 && row + band < faceSize) report(mip);
+        }
+        mPrefilterProg.set("uRowOffset", 0);
         return nowMs() - start;
     };
     // A table longer than the cube's halvings keeps its first entries and its last (so the
     // roughest lobe stays reachable): 9 mips of a 256^2 cube take 0 ... 0.5 and 1 of the seed's 11.
-    std::vector<float> table(size_t(mips), 0.0f);
-    for (int e = 0; e < int(s.mipRoughness.size()); ++e)
-        if (int m = chainMipOfEntry(s, e); m >= 0) table[size_t(m)] = s.mipRoughness[size_t(e)];
+    std::vector<float> table = chainRoughness(s);
     for (int m = 0; m < mips; ++m) {
         MipInfo info;
         info.roughness = table[size_t(m)];
@@ -153,12 +228,13 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer) {
         bool cone = s.distribution == PrefilterDistribution::BeckmannCone;
         info.diskRadius = cone ? beckmannDiskRadius(info.roughness) : 0.0f;
         info.samples = info.roughness > 0.0f ? s.samples : 0;
-        info.ms = dispatch(mPrefiltered, m, info.size, cone ? 1 : 0, info.roughness, info.diskRadius, s.samples);
+        info.ms = dispatch(mPrefiltered, m, info.size, cone ? 1 : 0, info.roughness, info.diskRadius, s.samples, m);
         mMips.push_back(info);
+        report(m + 1);
     }
     std::array<glm::vec3, 9> sh = irradianceSH(mImage);
     glProgramUniform3fv(mPrefilterProg.id(), mPrefilterProg.location("uSH[0]"), 9, &sh[0].x);
-    dispatch(mIrradiance, 0, kIrradianceSize, 2, 1.0f, 0.0f, 1);
+    dispatch(mIrradiance, 0, kIrradianceSize, 2, 1.0f, 0.0f, 1, -1);
     glBindSampler(0, 0);
     mKey = k;
 }

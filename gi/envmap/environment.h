@@ -7,7 +7,8 @@
 //                          (source, full mips for filtered importance sampling), then one
 //                          dispatch per mip of the chain (shaders/envmap/prefilter.comp: GGX
 //                          importance sampling, or the seed's Beckmann cone sampling), and a
-//                          32^2 cosine-convolved irradiance cube; the time of each mip is kept
+//                          32^2 cosine-convolved irradiance cube (a large mip in bands of rows,
+//                          with progress after each); the time of each mip is kept
 //                          (mipTimes()) for the Roughness Mips panel and the benchmark
 //   environment.shade      technique none: the indirect term from the irradiance cube, the
 //                          indirect specular from the chain at the pixel's roughness
@@ -41,6 +42,8 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/render/render_settings.h"
+#include "gi/util/progress.h"
 
 #include <glm/glm.hpp>
 
@@ -56,8 +59,11 @@ public:
     Environment();  // compiles the programs and computes the BRDF table; throws gi::Error
 
     // Loads and prefilters when the file or a prefilter setting changed (or `presetFolder`
-    // resolution differs); does nothing when disabled. Throws gi::Error naming the file or key.
-    void prepare(const EnvironmentSettings& s, gl::GpuTimer& timer);
+    // resolution differs); does nothing when disabled. Throws gi::Error naming the file or key:
+    // a map past render.memoryBudgetMB, a prefilter estimated past render.timeBudgetSeconds
+    // (both refused before anything is allocated). `progress` hears after each band of a mip.
+    void prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, const RenderSettings& render = {},
+                 const ProgressSink& progress = {});
     bool ready() const { return mPrefiltered.id() != 0; }
 
     // technique none: fills `indirect` (E / pi) and `specular` from the maps.
@@ -84,6 +90,12 @@ public:
 
     size_t memoryBytes() const { return mSource.bytes() + mPrefiltered.bytes() + mIrradiance.bytes() + mLUT.bytes() + mLatLong.bytes(); }
     static size_t estimateBytes(const EnvironmentSettings& s);
+    // The prefilter's work: samples over every texel of the mips of roughness above 0, and the
+    // time they take on llvmpipe (kPrefilterSamplesPerSecond in environment.cpp; 0 when disabled).
+    static double estimateSamples(const EnvironmentSettings& s);
+    static double estimateSeconds(const EnvironmentSettings& s);
+    // Throws gi::Error naming render.timeBudgetSeconds, the estimate and the settings to lower.
+    static void checkTimeBudget(const EnvironmentSettings& s, double budgetSeconds);
     std::vector<DebugView> debugViews() const;
     bool reloadShaders(std::string& log);
 
@@ -92,6 +104,8 @@ public:
     // table is longer than the chain (the first entries are kept and the last goes on the last mip).
     static int chainMipCount(const EnvironmentSettings& s);
     static int chainMipOfEntry(const EnvironmentSettings& s, int entry);
+    // The roughness of each mip of the chain, mip 0 first.
+    static std::vector<float> chainRoughness(const EnvironmentSettings& s);
 
     // The seed's roughness -> sampling disk radius (tan theta), interpolated (Fig. 3.24).
     static float beckmannDiskRadius(float roughness);

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 
 namespace gi {
 
@@ -22,19 +24,62 @@ glm::vec3 rotateY(const glm::vec3& d, float deg) {
     return {c * d.x + s * d.z, d.y, -s * d.x + c * d.z};
 }
 
-// Reads any image OpenImageIO knows as linear RGB, row 0 at the top.
-EnvironmentImage readImage(const std::filesystem::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw Error(path.string() + ": cannot read environment map: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1)
-        throw Error(path.string() + ": environment map has no pixels");
-    if (size_t(spec.width) * size_t(spec.height) > (size_t(1) << 26))
-        throw Error(path.string() + ": environment map of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                    " is larger than 64 Mpixel");
-    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
-        throw Error(path.string() + ": cannot decode environment map: " + in->geterror());
+// OpenImageIO's messages may span lines; every error here is one line.
+std::string oneLine(std::string text) {
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text.empty() ? "unknown error" : text;
+}
+
+// A map opened with its header read, no pixels yet: the header is checked (size, channels,
+// kind) before any pixel buffer exists, so a file claiming 10^12 pixels is refused, not allocated.
+struct OpenedImage {
+    std::unique_ptr<OIIO::ImageInput> in;
+    OIIO::ImageSpec spec;
+    std::string name;  // the file, for messages
+    int channels = 0;  // channels decoded: 3 (RGB) or 1 (grey, repeated)
+
+    size_t pixels() const { return size_t(spec.width) * size_t(spec.height); }
+    // Host bytes decoding takes: the decoded channels as floats plus the RGB copy kept.
+    size_t decodeBytes() const { return pixels() * (size_t(channels) * 4 + 12); }
+};
+
+OpenedImage openImage(const std::filesystem::path& path) {
+    OpenedImage img;
+    img.name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw Error(img.name + ": environment map is a folder, not an image file");
+    if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec)
+        throw Error(img.name + ": environment map is an empty file");
+    img.in = OIIO::ImageInput::open(img.name);
+    if (!img.in) throw Error(img.name + ": cannot read environment map: " + oneLine(OIIO::geterror()));
+    img.spec = img.in->spec();
+    const OIIO::ImageSpec& spec = img.spec;
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1 || spec.depth < 1)
+        throw Error(img.name + ": environment map has no pixels (header says " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height) + ", " + std::to_string(spec.nchannels) + " channels)");
+    if (spec.depth > 1 || spec.deep)
+        throw Error(img.name + ": environment map is a " + std::string(spec.deep ? "deep" : "volume") + " image; expected a 2D image");
+    if (spec.width > kMaxEnvironmentSide || spec.height > kMaxEnvironmentSide)
+        throw Error(img.name + ": environment map of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                    " is larger than " + std::to_string(kMaxEnvironmentSide) + " px per side (the largest texture GL 4.5 promises)");
+    // RGB from the first three channels (OpenImageIO puts R, G, B first; alpha and any further
+    // channels are ignored), grey (with or without alpha) from the first.
+    img.channels = spec.nchannels >= 3 ? 3 : 1;
+    return img;
+}
+
+void checkMemory(const std::string& name, const std::string& what, size_t bytes, size_t budgetBytes) {
+    MemoryBudget(double(budgetBytes) / (1024.0 * 1024.0)).reserve(double(bytes), name + ": decoding the environment map (" + what + ")");
+}
+
+// Decodes an opened map as linear RGB, row 0 at the top.
+EnvironmentImage decode(OpenedImage& file) {
+    const OIIO::ImageSpec& spec = file.spec;
+    std::vector<float> px(file.pixels() * size_t(file.channels));
+    if (!file.in->read_image(0, 0, 0, file.channels, OIIO::TypeDesc::FLOAT, px.data()))
+        throw Error(file.name + ": cannot decode environment map (truncated or damaged?): " + oneLine(file.in->geterror()));
     // Integer images are display-encoded unless tagged otherwise: 8-bit ones are taken as sRGB,
     // 16-bit ones only when OpenImageIO says so (linear 16-bit TIFFs are common).
     std::string space = spec.get_string_attribute("oiio:ColorSpace");
@@ -43,16 +88,27 @@ EnvironmentImage readImage(const std::filesystem::path& path) {
     EnvironmentImage img;
     img.width = spec.width;
     img.height = spec.height;
-    img.source = path.string();
-    img.rgb.resize(size_t(img.width) * img.height * 3);
-    for (size_t i = 0; i < size_t(img.width) * img.height; ++i)
+    img.source = file.name;
+    img.rgb.resize(file.pixels() * 3);
+    for (size_t i = 0; i < file.pixels(); ++i)
         for (int c = 0; c < 3; ++c) {
-            // Grey (+ alpha) images repeat channel 0.
-            float v = px[i * spec.nchannels + size_t(spec.nchannels >= 3 ? c : 0)];
+            // Grey images repeat channel 0.
+            float v = px[i * size_t(file.channels) + size_t(file.channels == 3 ? c : 0)];
             if (!std::isfinite(v) || v < 0.0f) v = 0.0f;  // negative or NaN texels would poison the prefilter
             img.rgb[i * 3 + size_t(c)] = srgb ? srgbToLinear(v) : v;
         }
+    file.in->close();
     return img;
+}
+
+// Reads any image OpenImageIO knows as linear RGB, row 0 at the top, refusing it from its header
+// when decoding would take more than `budgetBytes`.
+EnvironmentImage readImage(const std::filesystem::path& path, size_t budgetBytes) {
+    OpenedImage file = openImage(path);
+    if (file.spec.width < 2) throw Error(file.name + ": environment map is 1 px wide; a latlong map needs at least 2");
+    checkMemory(file.name, std::to_string(file.spec.width) + "x" + std::to_string(file.spec.height) + " px", file.decodeBytes(),
+                budgetBytes);
+    return decode(file);
 }
 
 // The GL cube face and its (s, t) in [-1, 1] (t growing downwards in the face image) that a
@@ -74,17 +130,31 @@ int faceOf(const glm::vec3& d, float& s, float& t) {
     return d.z > 0 ? 4 : 5;
 }
 
-EnvironmentImage loadCubeFaces(const std::string& pattern, const std::filesystem::path& presetFolder) {
+EnvironmentImage loadCubeFaces(const std::string& pattern, const std::filesystem::path& presetFolder, size_t budgetBytes) {
     static const std::array<const char*, 6> names{"px", "nx", "py", "ny", "pz", "nz"};
-    std::array<EnvironmentImage, 6> faces;
+    // Every face's header first: sizes agree and the whole cube fits the budget before any
+    // pixel is decoded.
+    std::array<OpenedImage, 6> files;
     size_t at = pattern.find("{face}");
+    size_t bytes = 0;
     for (int f = 0; f < 6; ++f) {
         std::string name = pattern.substr(0, at) + names[size_t(f)] + pattern.substr(at + 6);
-        faces[size_t(f)] = readImage(resolveAsset(name, presetFolder));
-        if (faces[size_t(f)].width != faces[size_t(f)].height || faces[size_t(f)].width != faces[0].width)
-            throw Error(faces[size_t(f)].source + ": cube faces must be square and of one size (" + std::to_string(faces[0].width) +
-                        " px)");
+        OpenedImage& file = files[size_t(f)];
+        file = openImage(resolveAsset(name, presetFolder));
+        if (file.spec.width != file.spec.height || file.spec.width != files[0].spec.width)
+            throw Error(file.name + ": cube faces must be square and of one size (" + names[0] + " is " +
+                        std::to_string(files[0].spec.width) + "x" + std::to_string(files[0].spec.height) + ", this face " +
+                        std::to_string(file.spec.width) + "x" + std::to_string(file.spec.height) + ")");
+        bytes += file.decodeBytes();
     }
+    const size_t side = size_t(files[0].spec.width);
+    if (4 * side > size_t(kMaxEnvironmentSide))
+        throw Error(files[0].name + ": cube faces of " + std::to_string(side) + " px make a latlong of " + std::to_string(4 * side) +
+                    " px, larger than " + std::to_string(kMaxEnvironmentSide) + " px per side (the largest texture GL 4.5 promises)");
+    checkMemory(pattern, "six faces of " + std::to_string(side) + "x" + std::to_string(side) + " px and their latlong", bytes + 8 * side * side * 12,
+                budgetBytes);
+    std::array<EnvironmentImage, 6> faces;
+    for (int f = 0; f < 6; ++f) faces[size_t(f)] = decode(files[size_t(f)]);
     int n = faces[0].width;
     EnvironmentImage img;
     img.width = 4 * n;
@@ -213,11 +283,11 @@ std::string resolveEnvironmentFile(const std::string& file, const std::filesyste
     return (found.parent_path() / name).string();
 }
 
-EnvironmentImage loadEnvironment(const std::string& file, const std::filesystem::path& presetFolder) {
+EnvironmentImage loadEnvironment(const std::string& file, const std::filesystem::path& presetFolder, size_t budgetBytes) {
     if (file.empty()) throw Error("key 'environment.file': no environment map given");
     if (file.rfind("builtin:", 0) == 0) return builtin(file);
-    if (file.find("{face}") != std::string::npos) return loadCubeFaces(file, presetFolder);
-    return readImage(resolveAsset(file, presetFolder));
+    if (file.find("{face}") != std::string::npos) return loadCubeFaces(file, presetFolder, budgetBytes);
+    return readImage(resolveAsset(file, presetFolder), budgetBytes);
 }
 
 }  // namespace gi

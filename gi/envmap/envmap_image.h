@@ -13,11 +13,18 @@
 //   builtin:sky       a clear-sky gradient (zenith blue, bright horizon, dark ground) with a
 //                     soft sun 30 degrees above the horizon, for scenes that ship no map.
 // Errors name the file (or the key when the name is malformed); nothing is loaded by halves.
+// Bad files are refused from their header, before any pixel buffer exists: a folder, an empty
+// file, not an image, no pixels, a 3D or deep image, more than kMaxEnvironmentSide per side, or
+// decoding that would take more memory than the budget (render.memoryBudgetMB); cube faces that
+// are not square or not of one size. Channels past the third (alpha, AOVs) are ignored.
 #pragma once
+
+#include "gi/util/budget.h"
 
 #include <glm/glm.hpp>
 
 #include <array>
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -40,9 +47,17 @@ struct EnvironmentImage {
 // Throws gi::Error naming the file when it cannot be found.
 std::string resolveEnvironmentFile(const std::string& file, const std::filesystem::path& presetFolder);
 
+// The largest latlong side (a cube face's latlong is 4 faces wide): GL 4.5's least
+// GL_MAX_TEXTURE_SIZE, since the map is uploaded as one 2D texture.
+inline constexpr int kMaxEnvironmentSide = 16384;
+// render.memoryBudgetMB's default (gi/util/budget.h), for callers without settings (tests, built-ins).
+inline constexpr size_t kDefaultEnvironmentBudgetBytes = size_t(kDefaultMemoryBudgetMB) << 20;
+
 // Loads `file` as EnvironmentSettings::file describes; relative names go through the asset
-// search path (gi/util/paths.h). Throws gi::Error naming the file.
-EnvironmentImage loadEnvironment(const std::string& file, const std::filesystem::path& presetFolder = {});
+// search path (gi/util/paths.h). Refuses, from the header, a map whose decoding needs more host
+// memory than `budgetBytes` (RenderSettings::memoryBudgetBytes()). Throws gi::Error naming the file.
+EnvironmentImage loadEnvironment(const std::string& file, const std::filesystem::path& presetFolder = {},
+                                 size_t budgetBytes = kDefaultEnvironmentBudgetBytes);
 
 // The latlong coordinates (u, v in [0, 1]) of a unit direction, and back.
 glm::vec2 latLongUV(const glm::vec3& dir, float rotationDeg);

@@ -82,8 +82,7 @@ Preset presetFromJson(const json& j, const std::string& context) {
     return p;
 }
 
-Preset loadPreset(const std::filesystem::path& path) {
-    std::string text = readTextFile(path);
+Preset presetFromText(const std::string& text, const std::string& context) {
     json j = json::parse(text, nullptr, false);
     if (j.is_discarded()) {
         // Parse again with exceptions on to get the position of the first error.
@@ -91,11 +90,15 @@ Preset loadPreset(const std::filesystem::path& path) {
             json again = json::parse(text);
             (void)again;
         } catch (const json::parse_error& e) {
-            throw Error(path.string() + ": invalid JSON at byte " + std::to_string(e.byte));
+            throw Error(context + ": invalid JSON at byte " + std::to_string(e.byte));
         }
-        throw Error(path.string() + ": invalid JSON");
+        throw Error(context + ": invalid JSON");
     }
-    Preset p = presetFromJson(j, path.string());
+    return presetFromJson(j, context);
+}
+
+Preset loadPreset(const std::filesystem::path& path) {
+    Preset p = presetFromText(readTextFile(path, kMaxPresetBytes), path.string());
     p.folder = path.parent_path();
     return p;
 }

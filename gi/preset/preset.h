@@ -78,6 +78,10 @@ Preset builtinDefaultPreset();
 json presetToJson(const Preset& p);
 // `context` names the source in error messages (usually the file path).
 Preset presetFromJson(const json& j, const std::string& context);
+// A preset from its JSON text; invalid JSON is an error naming the byte.
+Preset presetFromText(const std::string& text, const std::string& context);
+// Presets are small: a larger file is refused before it is read.
+constexpr size_t kMaxPresetBytes = size_t(16) << 20;
 Preset loadPreset(const std::filesystem::path& path);
 void savePreset(const Preset& p, const std::filesystem::path& path);
 

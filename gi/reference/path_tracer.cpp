@@ -299,10 +299,10 @@ struct PathTracer::Impl {
     mutable std::string environmentFile;
     mutable std::shared_ptr<const EnvironmentLight> environmentLight;
 
-    std::shared_ptr<const EnvironmentLight> environment(const std::string& file) const {
+    std::shared_ptr<const EnvironmentLight> environment(const std::string& file, size_t budgetBytes) const {
         std::lock_guard<std::mutex> lock(environmentMutex);
         if (!environmentLight || environmentFile != file) {
-            environmentLight = std::make_shared<const EnvironmentLight>(loadEnvironment(file));
+            environmentLight = std::make_shared<const EnvironmentLight>(loadEnvironment(file, {}, budgetBytes));
             environmentFile = file;
         }
         return environmentLight;
@@ -706,7 +706,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
     Environment env;
     std::shared_ptr<const EnvironmentLight> environment;
     if (fs.environment.enabled) {
-        environment = mImpl->environment(fs.environment.file);  // throws naming the file
+        environment = mImpl->environment(fs.environment.file, fs.render.memoryBudgetBytes());  // throws naming the file
         // A map scaled to nothing lights nothing: the same image as no environment.
         if (fs.environment.intensity > 0.0f) env.light = environment.get();
         env.intensity = fs.environment.intensity;
@@ -752,13 +752,18 @@ ImageRGB PathTracer::render(const FrameSettings& fs, const ReferenceSettings& rs
                                  const std::function<bool(int, int)>& progress) const {
     std::vector<double> sum;
     int done = 0;
-    // Passes double in size so progress comes early and overhead stays small.
+    // Passes double in size so progress comes early and overhead stays small, up to 64 samples
+    // per pixel, or fewer on a large image so a pass stays a few seconds long (progress is
+    // reported per pass): at most kPassPixelSamples, rounded down to a power of two.
+    constexpr double kPassPixelSamples = double(1 << 22);
+    int maxPass = 64;
+    while (maxPass > 1 && double(maxPass) * double(fs.width) * double(fs.height) > kPassPixelSamples) maxPass /= 2;
     int pass = 1;
     while (done < rs.spp) {
         int count = std::min(pass, rs.spp - done);
         trace(fs, rs, done, count, sum);
         done += count;
-        pass = std::min(pass * 2, 64);
+        pass = std::min(pass * 2, maxPass);
         if (progress && !progress(done, rs.spp)) break;
     }
     ImageRGB img;

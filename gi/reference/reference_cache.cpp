@@ -6,8 +6,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <mutex>
@@ -70,7 +72,7 @@ std::string environmentStamp(const std::string& file) {
 // The hash of an environment map's pixels, remembered per file while its stamp holds: the
 // editor keys its reference every frame and must not decode the map each time. A map that
 // cannot be loaded hashes to 0 here; rendering it then fails with the error naming the file.
-uint64_t environmentHash(const std::string& file) {
+uint64_t environmentHash(const std::string& file, size_t budgetBytes) {
     static std::mutex mutex;
     static std::map<std::string, std::pair<std::string, uint64_t>> memo;  // file -> (stamp, hash)
     std::string stamp = environmentStamp(file);
@@ -81,7 +83,7 @@ uint64_t environmentHash(const std::string& file) {
     }
     Hasher h;
     try {
-        EnvironmentImage env = loadEnvironment(file);
+        EnvironmentImage env = loadEnvironment(file, {}, budgetBytes);
         h.value(env.width);
         h.value(env.height);
         h.bytes(env.rgb.data(), env.rgb.size() * sizeof(float));
@@ -134,7 +136,7 @@ uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const Referen
         json env = toJson(fs.environment);
         for (const char* gpuOnly : {"cubeSize", "samples", "distribution", "mipRoughness"}) env.erase(gpuOnly);
         h.text(env.dump());
-        h.value(environmentHash(fs.environment.file));
+        h.value(environmentHash(fs.environment.file, fs.render.memoryBudgetBytes()));
     }
     return h.result();
 }
@@ -179,12 +181,53 @@ ImageRGB readEXR(const std::filesystem::path& path) {
     return img;
 }
 
+namespace {
+
+std::filesystem::path cacheFile(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%016llx.exr", static_cast<unsigned long long>(referenceKey(scene, fs, rs)));
+    return referenceCacheDir() / name;
+}
+
+// The CPU path tracer (Embree + oneTBB) on this project's 2-core machines, from gi-render's
+// stats.json (reference.rays and .seconds, BVH build included) with --reference --spp 8 to 16
+// at 320x180, a compile running beside it: 1.5 (environment_spheres) to 3.6 (sponza, default)
+// rays per pixel sample, 0.6 (sponza: textures and alpha tests) to 4.1 (basic) million rays per
+// second. The guess takes the most rays per sample and a middling rate, so a Cornell box is
+// overestimated about 2x and Sponza underestimated about 2x: the budget refuses the absurd
+// (1920x1080 at 65536 spp), not the merely slow.
+constexpr double kReferenceRaysPerSample = 4.0;
+constexpr double kReferenceRaysPerSecond = 2e6;
+
+}  // namespace
+
+bool referenceCached(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs) {
+    std::error_code ec;
+    return std::filesystem::exists(cacheFile(scene, fs, rs), ec);
+}
+
+double estimateReferenceSeconds(const FrameSettings& fs, const ReferenceSettings& rs) {
+    double pixels = double(std::max(fs.width, 0)) * double(std::max(fs.height, 0));
+    return pixels * double(rs.spp) * kReferenceRaysPerSample / kReferenceRaysPerSecond;
+}
+
+void checkReferenceTimeBudget(const FrameSettings& fs, const ReferenceSettings& rs, int references) {
+    if (references <= 0) return;
+    double seconds = estimateReferenceSeconds(fs, rs) * references;
+    if (seconds <= fs.render.timeBudgetSeconds) return;
+    std::string what = references > 1 ? std::to_string(references) + " path-traced references" : "path-traced reference";
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "key 'render.timeBudgetSeconds': %s estimated at %.0f s (%dx%d, %d spp) exceeds the budget of %.0f s; "
+                  "lower reference.spp (--spp) or the image size, or raise render.timeBudgetSeconds",
+                  what.c_str(), std::ceil(seconds), fs.width, fs.height, rs.spp, double(fs.render.timeBudgetSeconds));
+    throw Error(buf);
+}
+
 CachedReference cachedReference(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs,
                                 const std::function<bool(int, int)>& progress) {
     CachedReference out;
-    char name[64];
-    std::snprintf(name, sizeof name, "%016llx.exr", static_cast<unsigned long long>(referenceKey(scene, fs, rs)));
-    out.file = referenceCacheDir() / name;
+    out.file = cacheFile(scene, fs, rs);
     if (std::filesystem::exists(out.file)) {
         try {
             out.image = readEXR(out.file);
@@ -196,6 +239,7 @@ CachedReference cachedReference(const Scene& scene, const FrameSettings& fs, con
             // A damaged cache file is rendered again and replaced.
         }
     }
+    checkReferenceTimeBudget(fs, rs);
     auto start = std::chrono::steady_clock::now();
     PathTracer tracer(scene);
     bool complete = true;

@@ -32,8 +32,19 @@ struct CachedReference {
     std::filesystem::path file;  // the cache file
 };
 
+// Whether the reference for these settings is in the cache (then it costs nothing).
+bool referenceCached(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
+
+// The time a fresh reference takes on this machine's CPU tracer: pixels x spp x
+// kReferenceRaysPerSample / kReferenceRaysPerSecond (reference_cache.cpp says where they were
+// measured). Throws gi::Error naming render.timeBudgetSeconds when `references` fresh ones
+// (e.g. 2 for --score: full and indirect) are estimated past it; 0 references never throw.
+double estimateReferenceSeconds(const FrameSettings& fs, const ReferenceSettings& rs);
+void checkReferenceTimeBudget(const FrameSettings& fs, const ReferenceSettings& rs, int references = 1);
+
 // The cached reference, or a fresh render that is then stored. `progress` as PathTracer::render;
-// a render stopped early is returned but not stored.
+// a render stopped early is returned but not stored. A fresh one past render.timeBudgetSeconds
+// is refused before it starts (checkReferenceTimeBudget); a cached one never is.
 CachedReference cachedReference(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs,
                                 const std::function<bool(int, int)>& progress = {});
 

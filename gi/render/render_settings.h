@@ -4,6 +4,7 @@
 
 #include "gi/lpv/lpv_settings.h"
 #include "gi/preset/settings.h"
+#include "gi/util/budget.h"
 #include "gi/scene/scene_settings.h"
 #include "gi/ssao/ssao_settings.h"
 #include "gi/vct/vct_settings.h"
@@ -23,7 +24,8 @@ struct RenderSettings {
     float shadowBias = 1.5f;                  // depth bias in shadow-map texels, scaled by the slope
     bool specular = true;                     // add the GGX specular lobe to direct light
     glm::vec3 ambient{0.03f, 0.03f, 0.03f};   // uniform incident radiance used as the indirect term when technique is none
-    float memoryBudgetMB = 2048.0f;           // refuse settings whose GPU allocations would exceed this
+    float memoryBudgetMB = float(kDefaultMemoryBudgetMB);  // refuse settings whose GPU allocations would exceed this
+    float timeBudgetSeconds = 600.0f;         // refuse work (environment prefilter, reference) estimated to take longer, s
 
     template <class V>
     void visit(V&& v) {
@@ -33,7 +35,10 @@ struct RenderSettings {
         v(specular, {"specular", "Add GGX specular to direct light", ""});
         v(ambient, {"ambient", "Uniform incident radiance standing in for indirect light when technique is none", "", 0, 100});
         v(memoryBudgetMB, {"memoryBudgetMB", "GPU memory budget; larger settings are refused", "MiB", 16, 1 << 20});
+        v(timeBudgetSeconds, {"timeBudgetSeconds", "Refuse work estimated to take longer than this", "s", 1, 1e6});
     }
+
+    size_t memoryBudgetBytes() const { return size_t(double(memoryBudgetMB) * 1024.0 * 1024.0); }
 };
 
 enum class ToneMapper { Linear, Reinhard, ACES };

@@ -117,6 +117,13 @@ size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
 }
 
 void Renderer::checkBudget(const FrameSettings& fs, size_t sceneBytes) {
+    checkMemoryBudget(fs, sceneBytes);
+    // The prefilter runs only when the environment's maps change; Environment::prepare checks
+    // again then, so a chain already built is never refused here by a frame.
+    if (fs.environment.enabled) Environment::checkTimeBudget(fs.environment, fs.render.timeBudgetSeconds);
+}
+
+void Renderer::checkMemoryBudget(const FrameSettings& fs, size_t sceneBytes) {
     if (fs.width < 1 || fs.height < 1 || fs.width > 16384 || fs.height > 16384)
         throw Error("image size " + std::to_string(fs.width) + "x" + std::to_string(fs.height) +
                     " is outside 1..16384 per side");
@@ -205,7 +212,7 @@ void Renderer::prepareShadows(const FrameSettings& fs) {
 
 void Renderer::render(const FrameSettings& fs) {
     GI_ASSERT(mScene, "Renderer::render before setScene");
-    checkBudget(fs, mScene->memoryBytes());
+    checkMemoryBudget(fs, mScene->memoryBytes());
     resize(fs.width, fs.height);
     prepareShadows(fs);
     mCamera = fs.camera;
@@ -221,7 +228,7 @@ void Renderer::render(const FrameSettings& fs) {
     glm::mat4 viewProj = proj * view;
 
     mTimer.beginFrame();
-    mEnvironment.prepare(fs.environment, mTimer);
+    mEnvironment.prepare(fs.environment, mTimer, fs.render, mProgress);
     renderShadows(fs);
     renderGBuffer(viewProj);
     renderIndirect(fs, view, proj);

@@ -91,11 +91,16 @@ public:
 
     // Bytes the frame resources for these settings will hold (G-buffer, targets, shadow maps).
     static size_t estimateFrameBytes(const FrameSettings& fs);
-    // Throws gi::Error when the settings plus the scene would exceed render.memoryBudgetMB.
+    // Throws gi::Error when the settings plus the scene would exceed render.memoryBudgetMB, or
+    // the environment prefilter is estimated past render.timeBudgetSeconds.
     static void checkBudget(const FrameSettings& fs, size_t sceneBytes);
+    // The memory part alone (each frame checks it; the prefilter's time is checked when it runs).
+    static void checkMemoryBudget(const FrameSettings& fs, size_t sceneBytes);
     static void checkBudget(const FrameSettings& fs, const Scene& scene) { checkBudget(fs, GPUScene::estimateBytes(scene)); }
 
     void render(const FrameSettings& fs);
+    // Hears the progress of long steps inside render() (the environment prefilter).
+    void setProgressSink(ProgressSink sink) { mProgress = std::move(sink); }
 
     // Rebuilds every program from disk; a failure keeps the old programs and returns the log.
     bool reloadShaders(std::string& log);
@@ -171,6 +176,7 @@ private:
     SSAO mSSAO;
     Volumetric mVolumetric;
     Environment mEnvironment;
+    ProgressSink mProgress;
     TechniqueKind mTechniqueKind = TechniqueKind::None;
 
     void resize(int width, int height);

@@ -1,10 +1,28 @@
-// glTF 2.0 loading through tinygltf. tinygltf parses the JSON and decodes images; everything it
-// does not check (accessor bounds, index ranges, non-finite data, node cycles) is validated here
-// before use, so a malformed file fails with a message naming the element instead of crashing.
+// glTF 2.0 loading through tinygltf, hardened against hostile files.
+//
+// tinygltf parses the JSON and little else: it does not check that views lie inside their
+// buffers, that accessors fit their views, that a GLB's chunks fit the file, or how much memory
+// the counts in a file will take. So, in order:
+//   1. the file is read here (a regular file, its size counted against render.memoryBudgetMB
+//      together with the JSON tree it will become) and a GLB's chunk layout is checked;
+//   2. tinygltf parses it with this loader's file callbacks (external buffers and images are
+//      bounded the same way) and image callback (a view must lie inside its buffer, the decoded
+//      size is read from the image header and counted before anything is decoded, decoding is
+//      OpenImageIO's);
+//   3. the node hierarchy is walked once (cycles, depth and the number of node instances are
+//      bounded, so shared subtrees cannot expand exponentially) and the memory the triangles will
+//      take is estimated and counted before any of it is allocated;
+//   4. accessors are read with range checks written so that offset + length cannot wrap, and
+//      with the spec's alignment rules; sparse accessors are applied per the spec.
+// Every failure is a gi::Error of one line that names the file and the element at fault.
 #include "gi/scene/scene.h"
+#include "gi/util/budget.h"
 #include "gi/util/error.h"
 
 #include <tiny_gltf.h>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -13,55 +31,213 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 
 namespace gi {
 namespace {
 
+namespace fs = std::filesystem;
+
 constexpr int kMaxNodeDepth = 256;
+// Node visits over the whole hierarchy: a node may be the child of many parents, so a small file
+// can describe an exponential number of instances.
+constexpr size_t kMaxNodeInstances = size_t(1) << 20;
+// nlohmann's JSON tree takes up to this many bytes per byte of JSON text (a one-byte value is a
+// 16-byte node; an object member costs a map node and its key).
+constexpr double kJSONTreeBytesPerByte = 32.0;
+// World coordinates past this are refused: squared distances in single precision (lighting,
+// bounds, shadow projections) overflow near 1e19.
+constexpr float kMaxWorldCoordinate = 1e15f;
+// Texture coordinates past 2^23 have no fractional part left in single precision, so they no
+// longer address a point of the texture: such a primitive's coordinates are dropped.
+constexpr float kMaxTexCoord = 8388608.0f;
+
+std::string str(size_t v) { return std::to_string(v); }
+
+// a + b <= limit, without computing a + b.
+bool fits(size_t offset, size_t length, size_t limit) { return offset <= limit && length <= limit - offset; }
+
+// A file read whole, after checking it is a regular file and counting its size.
+std::vector<uint8_t> readBounded(const fs::path& path, MemoryBudget& budget, double bytesPerByte, const std::string& what) {
+    std::error_code ec;
+    fs::file_status st = fs::status(path, ec);
+    if (ec || !fs::exists(st)) throw Error(path.string() + ": file not found");
+    if (fs::is_directory(st)) throw Error(path.string() + ": is a folder, not a " + what);
+    if (!fs::is_regular_file(st)) throw Error(path.string() + ": is not a regular file");
+    uintmax_t size = fs::file_size(path, ec);
+    if (ec) throw Error(path.string() + ": cannot read its size: " + ec.message());
+    budget.reserve(double(size) * bytesPerByte, path.string() + ": " + what + " of " + str(size_t(size)) + " bytes");
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    std::ifstream in(path, std::ios::binary);
+    if (!in || !in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size())))
+        throw Error(path.string() + ": cannot read " + what);
+    return bytes;
+}
+
+// Everything tinygltf's callbacks need: the budget, and the first error they hit (tinygltf's
+// own messages for a failed callback are generic).
+struct LoadContext {
+    MemoryBudget* budget = nullptr;
+    tinygltf::Model* model = nullptr;
+    std::string error;
+    std::map<int, std::string> imageWarnings;  // why an image was left empty, by index
+};
+
+// Anything that exists "exists", so that fsReadWholeFile names what is wrong with it.
+bool fsFileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return fs::exists(path, ec);
+}
+
+std::string fsExpandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+
+bool fsReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    auto* ctx = static_cast<LoadContext*>(user);
+    try {
+        *out = readBounded(path, *ctx->budget, 1.0, "referenced file");
+        return true;
+    } catch (const Error& e) {
+        if (ctx->error.empty()) ctx->error = e.what();
+        if (err) *err += e.what();
+        return false;
+    }
+}
+
+bool fsWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "the loader writes no files";
+    return false;
+}
+
+// Decodes a PNG or JPEG held in memory to 8-bit RGBA with OpenImageIO, after counting the size
+// its header states. Returns false with `warning` set when the bytes are no image it can read.
+bool decodeImage(const uint8_t* bytes, size_t size, int index, MemoryBudget& budget, tinygltf::Image& image,
+                 std::string& warning) {
+    const char* name = nullptr;
+    if (size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0) name = "image.png";
+    else if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) name = "image.jpg";
+    if (!name) {
+        warning = "image " + str(size_t(index)) + " is neither PNG nor JPEG";
+        return false;
+    }
+    OIIO::Filesystem::IOMemReader reader(bytes, size);
+    auto in = OIIO::ImageInput::open(name, nullptr, &reader);
+    if (!in) {
+        warning = "image " + str(size_t(index)) + " cannot be read: " + OIIO::geterror();
+        for (auto& c : warning)
+            if (c == '\n') c = ' ';
+        return false;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1) {
+        warning = "image " + str(size_t(index)) + " has no pixels";
+        return false;
+    }
+    // The decoded file and the RGBA copy.
+    double pixels = double(spec.width) * double(spec.height);
+    budget.reserve(pixels * (double(spec.nchannels) + 4.0),
+                   "image " + str(size_t(index)) + " (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ")");
+    int channels = spec.nchannels;
+    std::vector<uint8_t> px(size_t(spec.width) * size_t(spec.height) * size_t(channels));
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, px.data())) {
+        warning = "image " + str(size_t(index)) + " cannot be decoded: " + in->geterror();
+        for (auto& c : warning)
+            if (c == '\n') c = ' ';
+        return false;
+    }
+    image.width = spec.width;
+    image.height = spec.height;
+    image.component = 4;
+    image.bits = 8;
+    image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image.image.resize(size_t(spec.width) * size_t(spec.height) * 4);
+    for (size_t i = 0; i < size_t(spec.width) * size_t(spec.height); ++i) {
+        const uint8_t* s = &px[i * size_t(channels)];
+        uint8_t* d = &image.image[i * 4];
+        switch (channels) {
+            case 1: d[0] = d[1] = d[2] = s[0]; d[3] = 255; break;
+            case 2: d[0] = d[1] = d[2] = s[0]; d[3] = s[1]; break;
+            case 3: d[0] = s[0]; d[1] = s[1]; d[2] = s[2]; d[3] = 255; break;
+            default: std::memcpy(d, s, 4); break;
+        }
+    }
+    return true;
+}
+
+// tinygltf's image callback. For an image in a buffer view, tinygltf hands over a pointer
+// computed from the view's unchecked offset: the view is checked here before it is read.
+// Images that cannot be decoded are left empty (the material then goes untextured, with a
+// warning); images that would pass the budget or lie outside their buffer fail the load.
+bool loadImageCallback(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
+                       const unsigned char* bytes, int size, void* user) {
+    auto* ctx = static_cast<LoadContext*>(user);
+    try {
+        if (image->bufferView >= 0) {
+            const auto& views = ctx->model->bufferViews;
+            if (size_t(image->bufferView) >= views.size())
+                throw Error("image " + str(size_t(index)) + ": bufferView " + str(size_t(image->bufferView)) + " does not exist");
+            const tinygltf::BufferView& view = views[size_t(image->bufferView)];
+            if (view.buffer < 0 || size_t(view.buffer) >= ctx->model->buffers.size())
+                throw Error("image " + str(size_t(index)) + ": bufferView " + str(size_t(image->bufferView)) +
+                            " references a missing buffer");
+            const auto& data = ctx->model->buffers[size_t(view.buffer)].data;
+            if (!fits(view.byteOffset, view.byteLength, data.size()))
+                throw Error("image " + str(size_t(index)) + ": bufferView " + str(size_t(image->bufferView)) + " (offset " +
+                            str(view.byteOffset) + ", length " + str(view.byteLength) + ") lies outside buffer " +
+                            str(size_t(view.buffer)) + " (" + str(data.size()) + " bytes)");
+            bytes = data.data() + view.byteOffset;
+            size = 0;
+            if (view.byteLength > size_t(INT32_MAX)) throw Error("image " + str(size_t(index)) + ": bufferView is over 2 GiB");
+            size = int(view.byteLength);
+        }
+        std::string warning;
+        if (size <= 0 || !bytes || !decodeImage(bytes, size_t(size), index, *ctx->budget, *image, warning)) {
+            ctx->imageWarnings[index] = warning.empty() ? "image " + str(size_t(index)) + " is empty" : warning;
+            image->image.clear();
+        }
+        return true;
+    } catch (const Error& e) {
+        if (ctx->error.empty()) ctx->error = e.what();
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+}
+
+// A GLB's chunk layout, checked in full before tinygltf reads it (tinygltf 2.7 lets the BIN
+// chunk's payload run 8 bytes past the stated length).
+void checkGLBLayout(const std::vector<uint8_t>& b, const std::string& file) {
+    auto u32 = [&](size_t at) {
+        uint32_t v;
+        std::memcpy(&v, b.data() + at, 4);
+        return v;
+    };
+    if (b.size() < 20) throw Error(file + ": malformed glTF: GLB shorter than its 20-byte header");
+    if (std::memcmp(b.data(), "glTF", 4) != 0) throw Error(file + ": malformed glTF: no GLB magic");
+    if (u32(4) != 2) throw Error(file + ": malformed glTF: GLB version " + str(u32(4)) + " (2 expected)");
+    size_t length = u32(8);
+    if (length > b.size()) throw Error(file + ": malformed glTF: GLB header states " + str(length) + " bytes, the file has " + str(b.size()));
+    size_t at = 12;
+    int chunk = 0;
+    while (at < length) {
+        if (!fits(at, 8, length)) throw Error(file + ": malformed glTF: GLB chunk " + str(size_t(chunk)) + " header is cut off");
+        size_t chunkLength = u32(at);
+        if (!fits(at + 8, chunkLength, length))
+            throw Error(file + ": malformed glTF: GLB chunk " + str(size_t(chunk)) + " of " + str(chunkLength) +
+                        " bytes runs past the end of the file");
+        if (chunk == 0 && u32(at + 4) != 0x4E4F534Au) throw Error(file + ": malformed glTF: the first GLB chunk is not JSON");
+        at += 8 + chunkLength;
+        ++chunk;
+    }
+    if (chunk == 0) throw Error(file + ": malformed glTF: GLB has no JSON chunk");
+}
 
 class GLTFReader {
 public:
-    GLTFReader(const tinygltf::Model& model, const std::string& file, Scene& scene)
-        : mModel(model), mFile(file), mScene(scene) {}
+    GLTFReader(tinygltf::Model& model, const std::string& file, Scene& scene, MemoryBudget& budget,
+               const std::map<int, std::string>& imageWarnings)
+        : mModel(model), mFile(file), mScene(scene), mBudget(budget), mImageWarnings(imageWarnings) {}
 
     [[noreturn]] void fail(const std::string& what) const { throw Error(mFile + ": " + what); }
-
-    // Reads `count * components` floats from an accessor, converting normalized integers.
-    std::vector<float> readFloats(int accessorIndex, int components, const char* what) const {
-        const tinygltf::Accessor& a = accessor(accessorIndex, what);
-        if (componentsOf(a.type) != components)
-            fail(std::string(what) + ": accessor " + std::to_string(accessorIndex) + " has type " +
-                 typeName(a.type) + ", expected " + std::to_string(components) + " components");
-        std::vector<float> out(size_t(a.count) * components, 0.0f);
-        forEachElement(a, accessorIndex, components, what, [&](size_t i, const uint8_t* p) {
-            for (int c = 0; c < components; ++c) out[i * components + c] = component(a, p, c, what, accessorIndex);
-        });
-        for (float f : out)
-            if (!std::isfinite(f))
-                fail(std::string(what) + ": accessor " + std::to_string(accessorIndex) + " contains non-finite values");
-        return out;
-    }
-
-    std::vector<uint32_t> readIndices(int accessorIndex) const {
-        const char* what = "indices";
-        const tinygltf::Accessor& a = accessor(accessorIndex, what);
-        if (a.type != TINYGLTF_TYPE_SCALAR)
-            fail("indices: accessor " + std::to_string(accessorIndex) + " is not SCALAR");
-        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            fail("indices: accessor " + std::to_string(accessorIndex) + " has a non-integer component type");
-        std::vector<uint32_t> out(a.count);
-        forEachElement(a, accessorIndex, 1, what, [&](size_t i, const uint8_t* p) {
-            switch (a.componentType) {
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = *p; break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); out[i] = v; break; }
-                default: { uint32_t v; std::memcpy(&v, p, 4); out[i] = v; break; }
-            }
-        });
-        return out;
-    }
 
     void load() {
         loadMaterials();
@@ -69,25 +245,44 @@ public:
         if (!mModel.scenes.empty()) {
             int s = mModel.defaultScene >= 0 ? mModel.defaultScene : 0;
             if (s >= int(mModel.scenes.size())) fail("scene " + std::to_string(s) + " does not exist");
-            roots = mModel.scenes[s].nodes;
+            roots = mModel.scenes[size_t(s)].nodes;
         } else {
             // No scene: every node that is nobody's child is a root.
             std::vector<bool> isChild(mModel.nodes.size(), false);
             for (const auto& n : mModel.nodes)
                 for (int c : n.children)
-                    if (c >= 0 && c < int(isChild.size())) isChild[c] = true;
+                    if (c >= 0 && c < int(isChild.size())) isChild[size_t(c)] = true;
             for (size_t i = 0; i < mModel.nodes.size(); ++i)
                 if (!isChild[i]) roots.push_back(int(i));
         }
         std::vector<bool> onStack(mModel.nodes.size(), false);
         for (int r : roots) visitNode(r, glm::mat4(1.0f), onStack, 0);
+        reserveGeometry();
+        for (const Instance& inst : mInstances) {
+            const auto& mesh = mModel.meshes[size_t(inst.mesh)];
+            for (size_t p = 0; p < mesh.primitives.size(); ++p) addPrimitive(mesh.primitives[p], inst.mesh, int(p), inst.world);
+        }
     }
 
 private:
-    const tinygltf::Model& mModel;
+    struct Instance {
+        int mesh;
+        glm::mat4 world;
+    };
+    // Where an accessor's elements are: `base` null means all zeros (no bufferView).
+    struct Elements {
+        const uint8_t* base = nullptr;
+        size_t stride = 0;
+    };
+
+    tinygltf::Model& mModel;
     std::string mFile;
     Scene& mScene;
+    MemoryBudget& mBudget;
+    const std::map<int, std::string>& mImageWarnings;
     std::map<int, int> mImageToTexture;
+    std::vector<Instance> mInstances;
+    size_t mNodeVisits = 0;
     int mDefaultMaterial = -1;
 
     static int componentsOf(int type) {
@@ -122,67 +317,187 @@ private:
         }
         return 0;
     }
+    static bool isIndexType(int ct) {
+        return ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+               ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    }
 
     const tinygltf::Accessor& accessor(int index, const char* what) const {
         if (index < 0 || index >= int(mModel.accessors.size()))
             fail(std::string(what) + ": accessor " + std::to_string(index) + " does not exist");
-        return mModel.accessors[index];
+        return mModel.accessors[size_t(index)];
     }
 
-    template <class F>
-    void forEachElement(const tinygltf::Accessor& a, int index, int components, const char* what, F&& f) const {
+    // The first of `count` elements of `elementBytes` each, `stride` apart, starting `offset`
+    // bytes into bufferView `viewIndex`. Every sum is checked before it is formed, so offsets
+    // near 2^64 cannot wrap into range.
+    const uint8_t* viewData(int viewIndex, size_t offset, size_t count, size_t elementBytes, size_t stride, int componentBytes,
+                            const std::string& name) const {
+        if (viewIndex < 0 || size_t(viewIndex) >= mModel.bufferViews.size())
+            fail(name + " references missing bufferView " + std::to_string(viewIndex));
+        const tinygltf::BufferView& view = mModel.bufferViews[size_t(viewIndex)];
+        std::string viewName = "bufferView " + std::to_string(viewIndex);
+        if (view.buffer < 0 || size_t(view.buffer) >= mModel.buffers.size()) fail(name + ": " + viewName + " references a missing buffer");
+        const auto& data = mModel.buffers[size_t(view.buffer)].data;
+        if (!fits(view.byteOffset, view.byteLength, data.size()))
+            fail(name + ": " + viewName + " (offset " + str(view.byteOffset) + ", length " + str(view.byteLength) +
+                 ") lies outside buffer " + std::to_string(view.buffer) + " (" + str(data.size()) + " bytes)");
+        if (!fits(offset, elementBytes, view.byteLength))
+            fail(name + " starts past the end of " + viewName + " (offset " + str(offset) + ", view length " + str(view.byteLength) + ")");
+        if (offset % size_t(componentBytes) != 0 || (view.byteOffset + offset) % size_t(componentBytes) != 0)
+            fail(name + " is misaligned: offset " + str(offset) + " into " + viewName + " at " + str(view.byteOffset) +
+                 " is not a multiple of its " + std::to_string(componentBytes) + "-byte components");
+        if (stride == 0 || stride % size_t(componentBytes) != 0)
+            fail(name + ": " + viewName + " has byteStride " + str(stride) + ", not a multiple of its " +
+                 std::to_string(componentBytes) + "-byte components");
+        if (count > 0 && (count - 1) > (view.byteLength - offset - elementBytes) / stride)
+            fail(name + " reads past the end of its buffer (" + str(count) + " elements of stride " + str(stride) + " from offset " +
+                 str(offset) + " in " + viewName + " of " + str(view.byteLength) + " bytes)");
+        return data.data() + view.byteOffset + offset;
+    }
+
+    template <class T>
+    static T componentAs(int componentType, bool normalized, const uint8_t* p, int c) {
+        auto load = [&](auto v) {
+            std::memcpy(&v, p + sizeof(v) * size_t(c), sizeof(v));
+            return v;
+        };
+        if constexpr (std::is_same_v<T, uint32_t>) {
+            switch (componentType) {
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load(uint8_t());
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load(uint16_t());
+                default: return load(uint32_t());
+            }
+        } else {
+            switch (componentType) {
+                case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float());
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { float v = load(uint8_t()); return normalized ? v / 255.0f : v; }
+                case TINYGLTF_COMPONENT_TYPE_BYTE: { float v = load(int8_t()); return normalized ? std::max(v / 127.0f, -1.0f) : v; }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { float v = load(uint16_t()); return normalized ? v / 65535.0f : v; }
+                case TINYGLTF_COMPONENT_TYPE_SHORT: { float v = load(int16_t()); return normalized ? std::max(v / 32767.0f, -1.0f) : v; }
+                default: return float(load(uint32_t()));
+            }
+        }
+    }
+
+    // Reads accessor `index` (`components` values per element) as T, with its sparse
+    // substitutions applied. reserveGeometry() counted the memory of POSITION and index accessors;
+    // the other attributes must hold `expectedCount` elements (POSITION's), checked before anything
+    // is allocated, as is the range of the data.
+    template <class T>
+    std::vector<T> read(int index, int components, const char* what, size_t expectedCount = SIZE_MAX) const {
+        const tinygltf::Accessor& a = accessor(index, what);
         std::string name = std::string(what) + ": accessor " + std::to_string(index);
+        if (componentsOf(a.type) != components)
+            fail(name + " has type " + typeName(a.type) + ", expected " + std::to_string(components) + " components");
         int cb = componentBytes(a.componentType);
         if (cb == 0) fail(name + " has an unknown component type " + std::to_string(a.componentType));
-        if (a.sparse.isSparse) fail(name + " is sparse, which is not supported");
-        if (a.count == 0) return;
-        if (a.count > (size_t(1) << 28)) fail(name + " has an absurd count " + std::to_string(a.count));
-        if (a.bufferView < 0) return;  // no data: all zeros, as the spec says
-        if (a.bufferView >= int(mModel.bufferViews.size()))
-            fail(name + " references missing bufferView " + std::to_string(a.bufferView));
-        const tinygltf::BufferView& view = mModel.bufferViews[a.bufferView];
-        if (view.buffer < 0 || view.buffer >= int(mModel.buffers.size()))
-            fail(name + ": bufferView " + std::to_string(a.bufferView) + " references a missing buffer");
-        const tinygltf::Buffer& buffer = mModel.buffers[view.buffer];
-        size_t elementBytes = size_t(cb) * components;
-        size_t stride = view.byteStride ? view.byteStride : elementBytes;
-        size_t begin = view.byteOffset + a.byteOffset;
-        size_t last = begin + stride * (a.count - 1) + elementBytes;
-        if (a.byteOffset + stride * (a.count - 1) + elementBytes > view.byteLength || last > buffer.data.size())
-            fail(name + " reads past the end of its buffer (needs " + std::to_string(last) + " bytes, buffer has " +
-                 std::to_string(buffer.data.size()) + ")");
-        const uint8_t* base = buffer.data.data() + begin;
-        for (size_t i = 0; i < a.count; ++i) f(i, base + i * stride);
+        if constexpr (std::is_same_v<T, uint32_t>)
+            if (!isIndexType(a.componentType)) fail(name + " has a non-integer component type");
+        if (expectedCount != SIZE_MAX && a.count != expectedCount)
+            fail(name + " holds " + str(a.count) + " elements where POSITION holds " + str(expectedCount));
+        size_t elementBytes = size_t(cb) * size_t(components);
+        const uint8_t* base = nullptr;
+        size_t stride = elementBytes;
+        if (a.bufferView >= 0 && a.count > 0) {
+            if (size_t(a.bufferView) < mModel.bufferViews.size() && mModel.bufferViews[size_t(a.bufferView)].byteStride != 0)
+                stride = mModel.bufferViews[size_t(a.bufferView)].byteStride;
+            base = viewData(a.bufferView, a.byteOffset, a.count, elementBytes, stride, cb, name);
+        }
+        std::vector<T> out(a.count * size_t(components), T(0));
+        if (base) {
+            for (size_t i = 0; i < a.count; ++i)
+                for (int c = 0; c < components; ++c)
+                    out[i * size_t(components) + size_t(c)] = componentAs<T>(a.componentType, a.normalized, base + i * stride, c);
+        }
+        if (a.sparse.isSparse) {
+            const auto& sp = a.sparse;
+            if (sp.count < 1 || size_t(sp.count) > a.count)
+                fail(name + ": sparse count " + std::to_string(sp.count) + " is outside 1.." + str(a.count));
+            if (!isIndexType(sp.indices.componentType))
+                fail(name + ": sparse indices have component type " + std::to_string(sp.indices.componentType) + ", not an unsigned integer");
+            if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0) fail(name + ": sparse byteOffset is negative");
+            size_t n = size_t(sp.count);
+            int icb = componentBytes(sp.indices.componentType);
+            const uint8_t* idx = viewData(sp.indices.bufferView, size_t(sp.indices.byteOffset), n, size_t(icb), size_t(icb), icb,
+                                          name + " sparse indices");
+            const uint8_t* val = viewData(sp.values.bufferView, size_t(sp.values.byteOffset), n, elementBytes, elementBytes, cb,
+                                          name + " sparse values");
+            for (size_t i = 0; i < n; ++i) {
+                uint32_t j = componentAs<uint32_t>(sp.indices.componentType, false, idx + i * size_t(icb), 0);
+                if (j >= a.count) fail(name + ": sparse index " + str(j) + " is past its count " + str(a.count));
+                for (int c = 0; c < components; ++c)
+                    out[size_t(j) * size_t(components) + size_t(c)] =
+                        componentAs<T>(a.componentType, a.normalized, val + i * elementBytes, c);
+            }
+        }
+        if constexpr (std::is_same_v<T, float>)
+            for (float f : out)
+                if (!std::isfinite(f)) fail(name + " contains non-finite values");
+        return out;
     }
 
-    float component(const tinygltf::Accessor& a, const uint8_t* p, int c, const char* what, int index) const {
-        switch (a.componentType) {
-            case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p + 4 * c, 4); return v; }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { float v = p[c]; return a.normalized ? v / 255.0f : v; }
-            case TINYGLTF_COMPONENT_TYPE_BYTE: { float v = float(int8_t(p[c])); return a.normalized ? std::max(v / 127.0f, -1.0f) : v; }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p + 2 * c, 2); return a.normalized ? v / 65535.0f : float(v); }
-            case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p + 2 * c, 2); return a.normalized ? std::max(v / 32767.0f, -1.0f) : float(v); }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p + 4 * c, 4); return float(v); }
+    // The elements an accessor holds, for estimates: 0 when it does not exist (the read fails later).
+    double countOf(int index) const {
+        return index >= 0 && size_t(index) < mModel.accessors.size() ? double(mModel.accessors[size_t(index)].count) : 0.0;
+    }
+
+    // Counts the memory the triangles of every instance will take, before any is allocated:
+    // the world-space vertices and indices (and finalize()'s sorted copy), plus the largest
+    // primitive's decoded attributes while it is read.
+    void reserveGeometry() {
+        std::vector<double> meshBytes(mModel.meshes.size(), 0.0), meshTemp(mModel.meshes.size(), 0.0),
+            meshVerts(mModel.meshes.size(), 0.0), meshTris(mModel.meshes.size(), 0.0);
+        for (size_t m = 0; m < mModel.meshes.size(); ++m)
+            for (const auto& prim : mModel.meshes[m].primitives) {
+                if (prim.mode >= 0 && prim.mode <= 3) continue;
+                auto pos = prim.attributes.find("POSITION");
+                if (pos == prim.attributes.end()) continue;
+                double verts = countOf(pos->second);
+                double idx = prim.indices >= 0 ? countOf(prim.indices) : verts;
+                double tris = prim.mode == 5 || prim.mode == 6 ? std::max(idx - 2.0, 0.0) : std::floor(idx / 3.0);
+                double out = prim.attributes.count("NORMAL") ? verts : 3.0 * tris;
+                meshVerts[m] += out;
+                meshTris[m] += tris;
+                meshBytes[m] += out * double(sizeof(Vertex)) + tris * 3.0 * 4.0 * 2.0;
+                meshTemp[m] = std::max(meshTemp[m], verts * (3.0 + 3.0 + 2.0) * 4.0 + idx * 4.0 + tris * 12.0);
+            }
+        double bytes = 0.0, temp = 0.0, verts = 0.0, tris = 0.0, primitives = 0.0;
+        for (const Instance& inst : mInstances) {
+            size_t m = size_t(inst.mesh);
+            bytes += meshBytes[m];
+            temp = std::max(temp, meshTemp[m]);
+            verts += meshVerts[m];
+            tris += meshTris[m];
+            primitives += double(mModel.meshes[m].primitives.size());
         }
-        fail(std::string(what) + ": accessor " + std::to_string(index) + " has an unsupported component type");
+        if (primitives > double(kMaxNodeInstances) * 16.0)
+            fail("the node hierarchy instances " + str(size_t(primitives)) + " primitives (at most " + str(kMaxNodeInstances * 16) + ")");
+        char what[160];
+        std::snprintf(what, sizeof what, "the scene's %.0f triangles and %.0f vertices over %zu mesh instances", tris, verts,
+                      mInstances.size());
+        mBudget.reserve(bytes + temp, mFile + ": " + what);
+        if (verts >= 4294967296.0) fail("the scene would hold " + str(size_t(verts)) + " vertices (at most 2^32 - 1)");
     }
 
     int textureFor(int textureIndex) {
         if (textureIndex < 0) return -1;
         if (textureIndex >= int(mModel.textures.size()))
             fail("texture " + std::to_string(textureIndex) + " does not exist");
-        int source = mModel.textures[textureIndex].source;
+        int source = mModel.textures[size_t(textureIndex)].source;
         if (source < 0 || source >= int(mModel.images.size())) {
             mScene.warnings.push_back("texture " + std::to_string(textureIndex) + " has no usable image; ignored");
             return -1;
         }
         auto it = mImageToTexture.find(source);
         if (it != mImageToTexture.end()) return it->second;
-        const tinygltf::Image& img = mModel.images[source];
-        if (img.width <= 0 || img.height <= 0 || img.image.empty() || img.bits != 8 || img.component < 1 ||
-            img.component > 4 || img.image.size() < size_t(img.width) * img.height * img.component) {
-            mScene.warnings.push_back("image " + std::to_string(source) + " ('" + img.uri +
-                                      "') could not be decoded as 8-bit; ignored");
+        tinygltf::Image& img = mModel.images[size_t(source)];
+        // The image callback decoded it to 8-bit RGBA, or left it empty.
+        if (img.width <= 0 || img.height <= 0 || img.component != 4 ||
+            img.image.size() != size_t(img.width) * size_t(img.height) * 4) {
+            auto why = mImageWarnings.find(source);
+            mScene.warnings.push_back((why != mImageWarnings.end() ? why->second : "image " + std::to_string(source) + " could not be decoded") +
+                                      (img.uri.empty() ? "" : " ('" + img.uri + "')") + "; its texture is left out");
             mImageToTexture[source] = -1;
             return -1;
         }
@@ -190,17 +505,7 @@ private:
         t.name = img.name.empty() ? img.uri : img.name;
         t.width = img.width;
         t.height = img.height;
-        t.rgba.resize(size_t(img.width) * img.height * 4);
-        for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
-            const uint8_t* s = &img.image[i * img.component];
-            uint8_t* d = &t.rgba[i * 4];
-            switch (img.component) {
-                case 1: d[0] = d[1] = d[2] = s[0]; d[3] = 255; break;
-                case 2: d[0] = d[1] = d[2] = s[0]; d[3] = s[1]; break;
-                case 3: d[0] = s[0]; d[1] = s[1]; d[2] = s[2]; d[3] = 255; break;
-                default: std::memcpy(d, s, 4); break;
-            }
-        }
+        t.rgba = std::move(img.image);
         mScene.textures.push_back(std::move(t));
         return mImageToTexture[source] = int(mScene.textures.size()) - 1;
     }
@@ -231,6 +536,7 @@ private:
             if (m.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
             else if (m.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
             out.alphaCutoff = float(m.alphaCutoff);
+            if (!std::isfinite(out.alphaCutoff)) fail("material " + std::to_string(i) + ": non-finite alphaCutoff");
             out.doubleSided = m.doubleSided;
             for (int c = 0; c < 4; ++c)
                 if (!std::isfinite(out.baseColor[c])) fail("material " + std::to_string(i) + ": non-finite baseColorFactor");
@@ -265,51 +571,63 @@ private:
         return t * r * s;
     }
 
+    // Collects mesh instances, cameras and lights. Depth, cycles and the total number of node
+    // visits are bounded: a small file can share subtrees into an exponential hierarchy.
     void visitNode(int index, const glm::mat4& parent, std::vector<bool>& onStack, int depth) {
         if (index < 0 || index >= int(mModel.nodes.size())) fail("node " + std::to_string(index) + " does not exist");
-        if (onStack[index]) fail("node " + std::to_string(index) + " is its own ancestor (cyclic node hierarchy)");
+        if (onStack[size_t(index)]) fail("node " + std::to_string(index) + " is its own ancestor (cyclic node hierarchy)");
         if (depth > kMaxNodeDepth) fail("node hierarchy deeper than " + std::to_string(kMaxNodeDepth));
-        const tinygltf::Node& node = mModel.nodes[index];
+        if (++mNodeVisits > kMaxNodeInstances)
+            fail("the node hierarchy expands to more than " + str(kMaxNodeInstances) + " node instances");
+        const tinygltf::Node& node = mModel.nodes[size_t(index)];
         glm::mat4 world = parent * localMatrix(node);
         for (int i = 0; i < 16; ++i)
             if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(index) + ": non-finite transform");
-        onStack[index] = true;
+        onStack[size_t(index)] = true;
         if (node.mesh >= 0) {
             if (node.mesh >= int(mModel.meshes.size())) fail("node " + std::to_string(index) + ": mesh " + std::to_string(node.mesh) + " does not exist");
-            const auto& mesh = mModel.meshes[node.mesh];
-            for (size_t p = 0; p < mesh.primitives.size(); ++p) addPrimitive(mesh.primitives[p], node.mesh, int(p), world);
+            mInstances.push_back({node.mesh, world});
         }
-        if (node.camera >= 0) addCamera(node.camera, world);
+        if (node.camera >= 0) addCamera(index, node.camera, world);
         auto ext = node.extensions.find("KHR_lights_punctual");
         if (ext != node.extensions.end() && ext->second.IsObject() && ext->second.Has("light")) {
             const auto& l = ext->second.Get("light");
-            if (l.IsInt()) addLight(l.GetNumberAsInt(), world);
+            if (l.IsInt()) addLight(index, l.GetNumberAsInt(), world);
         }
         for (int c : node.children) visitNode(c, world, onStack, depth + 1);
-        onStack[index] = false;
+        onStack[size_t(index)] = false;
     }
 
-    void addCamera(int index, const glm::mat4& world) {
+    // A unit axis of a node's frame; a node scaled to nothing has none.
+    glm::vec3 axis(int node, const glm::vec4& column, const char* what) const {
+        glm::vec3 v(column);
+        float len = glm::length(v);
+        if (!(len > 1e-20f) || !std::isfinite(len)) fail("node " + std::to_string(node) + ": " + what + " under a degenerate transform");
+        return v / len;
+    }
+
+    void addCamera(int node, int index, const glm::mat4& world) {
         if (index >= int(mModel.cameras.size())) fail("camera " + std::to_string(index) + " does not exist");
-        const auto& c = mModel.cameras[index];
+        const auto& c = mModel.cameras[size_t(index)];
         CameraSettings cam;
         cam.eye = glm::vec3(world[3]);
-        glm::vec3 forward = -glm::normalize(glm::vec3(world[2]));
+        glm::vec3 forward = -axis(node, world[2], "camera");
         cam.target = cam.eye + forward;
-        cam.up = glm::normalize(glm::vec3(world[1]));
+        cam.up = axis(node, world[1], "camera");
         if (c.type == "perspective") {
-            cam.fovY = std::clamp(float(glm::degrees(c.perspective.yfov)), 1.0f, 170.0f);
-            if (c.perspective.znear > 0) cam.near = float(c.perspective.znear);
-            if (c.perspective.zfar > c.perspective.znear) cam.far = float(c.perspective.zfar);
+            double fov = glm::degrees(c.perspective.yfov);
+            cam.fovY = std::isfinite(fov) ? float(std::clamp(fov, 1.0, 170.0)) : 40.0f;
+            if (c.perspective.znear > 0 && c.perspective.znear < 1e30) cam.near = float(c.perspective.znear);
+            if (c.perspective.zfar > c.perspective.znear && c.perspective.zfar < 1e30) cam.far = float(c.perspective.zfar);
         } else {
             mScene.warnings.push_back("camera " + std::to_string(index) + " is orthographic; shown as perspective");
         }
         mScene.cameras.push_back(cam);
     }
 
-    void addLight(int index, const glm::mat4& world) {
+    void addLight(int node, int index, const glm::mat4& world) {
         if (index < 0 || index >= int(mModel.lights.size())) fail("light " + std::to_string(index) + " does not exist");
-        const auto& l = mModel.lights[index];
+        const auto& l = mModel.lights[size_t(index)];
         LightSettings out;
         if (l.type == "directional") out.type = LightType::Directional;
         else if (l.type == "point") out.type = LightType::Point;
@@ -318,28 +636,32 @@ private:
         if (l.color.size() == 3) out.color = glm::vec3(l.color[0], l.color[1], l.color[2]);
         out.intensity = float(l.intensity);
         out.range = float(l.range);
+        if (!std::isfinite(out.color.x + out.color.y + out.color.z + out.intensity + out.range) || out.intensity < 0.0f ||
+            out.range < 0.0f || glm::any(glm::lessThan(out.color, glm::vec3(0.0f))))
+            fail("light " + std::to_string(index) + ": colour, intensity and range must be finite and not negative");
         out.position = glm::vec3(world[3]);
-        out.direction = -glm::normalize(glm::vec3(world[2]));
-        out.innerConeDeg = float(glm::degrees(l.spot.innerConeAngle));
-        out.outerConeDeg = std::max(float(glm::degrees(l.spot.outerConeAngle)), out.innerConeDeg + 0.1f);
+        out.direction = -axis(node, world[2], "light");
+        double inner = glm::degrees(l.spot.innerConeAngle), outer = glm::degrees(l.spot.outerConeAngle);
+        if (!std::isfinite(inner) || !std::isfinite(outer)) fail("light " + std::to_string(index) + ": non-finite cone angles");
+        out.innerConeDeg = float(std::clamp(inner, 0.0, 90.0));
+        out.outerConeDeg = std::max(float(std::clamp(outer, 0.0, 90.0)), out.innerConeDeg + 0.1f);
         mScene.lights.push_back(out);
     }
 
     void addPrimitive(const tinygltf::Primitive& prim, int meshIndex, int primIndex, const glm::mat4& world) {
         std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primIndex);
         if (prim.mode >= 0 && prim.mode <= 3) {
-            mScene.warnings.push_back(where + ": points and lines are not surfaces; skipped");
+            warnOnce(where + ": points and lines are not surfaces; skipped");
             return;
         }
         if (prim.mode > 6) fail(where + ": unknown primitive mode " + std::to_string(prim.mode));
         auto posIt = prim.attributes.find("POSITION");
         if (posIt == prim.attributes.end()) fail(where + " has no POSITION attribute");
-        std::vector<float> pos = readFloats(posIt->second, 3, "POSITION");
+        std::vector<float> pos = read<float>(posIt->second, 3, "POSITION");
         size_t vertexCount = pos.size() / 3;
         std::vector<float> nrm, uv;
         if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-            nrm = readFloats(it->second, 3, "NORMAL");
-            if (nrm.size() / 3 != vertexCount) fail(where + ": NORMAL count differs from POSITION count");
+            nrm = read<float>(it->second, 3, "NORMAL", vertexCount);
         }
         int material = prim.material;
         if (material >= int(mModel.materials.size()))
@@ -347,15 +669,22 @@ private:
         if (material < 0) material = defaultMaterial();
         int texCoord = 0;
         if (material < int(mModel.materials.size()))
-            texCoord = mModel.materials[material].pbrMetallicRoughness.baseColorTexture.texCoord;
+            texCoord = mModel.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture.texCoord;
         if (auto it = prim.attributes.find("TEXCOORD_" + std::to_string(texCoord)); it != prim.attributes.end()) {
-            uv = readFloats(it->second, 2, "TEXCOORD");
-            if (uv.size() / 2 != vertexCount) fail(where + ": TEXCOORD count differs from POSITION count");
+            uv = read<float>(it->second, 2, "TEXCOORD", vertexCount);
+            float largest = 0.0f;
+            for (float f : uv) largest = std::max(largest, std::abs(f));
+            if (largest > kMaxTexCoord) {
+                char buf[160];
+                std::snprintf(buf, sizeof buf, ": texture coordinates reach %g, past +-2^23 where they address no texel; ignored", double(largest));
+                warnOnce(where + buf);
+                uv.clear();
+            }
         }
 
         std::vector<uint32_t> idx;
         if (prim.indices >= 0) {
-            idx = readIndices(prim.indices);
+            idx = read<uint32_t>(prim.indices, 1, "indices");
             for (uint32_t i : idx)
                 if (i >= vertexCount)
                     fail(where + ": index " + std::to_string(i) + " out of range (" + std::to_string(vertexCount) + " vertices)");
@@ -372,15 +701,23 @@ private:
         } else if (prim.mode == 6) {  // fan
             for (size_t i = 2; i < idx.size(); ++i) tris.insert(tris.end(), {idx[0], idx[i - 1], idx[i]});
         } else {
-            if (idx.size() % 3 != 0)
-                mScene.warnings.push_back(where + ": index count is not a multiple of 3; the tail is ignored");
-            tris.assign(idx.begin(), idx.begin() + (idx.size() / 3) * 3);
+            if (idx.size() % 3 != 0) warnOnce(where + ": index count is not a multiple of 3; the tail is ignored");
+            tris.assign(idx.begin(), idx.begin() + std::ptrdiff_t((idx.size() / 3) * 3));
         }
         if (tris.empty()) return;
 
         glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(world));
         bool flip = glm::determinant(glm::mat3(world)) < 0.0f;
-        auto transformPos = [&](uint32_t i) { return glm::vec3(world * glm::vec4(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2], 1.0f)); };
+        auto transformPos = [&](uint32_t i) {
+            glm::vec3 p = glm::vec3(world * glm::vec4(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2], 1.0f));
+            float m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+            if (!(m <= kMaxWorldCoordinate)) {
+                char buf[160];
+                std::snprintf(buf, sizeof buf, ": a vertex lies %g from the origin (at most 1e15: single precision overflows past it)", double(m));
+                fail(where + buf);
+            }
+            return p;
+        };
 
         uint32_t firstIndex = uint32_t(mScene.indices.size());
         if (nrm.empty()) {
@@ -389,11 +726,11 @@ private:
                 glm::vec3 p[3] = {transformPos(tris[t]), transformPos(tris[t + 1]), transformPos(tris[t + 2])};
                 glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
                 float len = glm::length(n);
-                n = len > 0.0f ? n / len : glm::vec3(0, 1, 0);
+                n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
                 if (flip) n = -n;
                 uint32_t base = uint32_t(mScene.vertices.size());
                 for (int k = 0; k < 3; ++k) {
-                    uint32_t i = tris[t + k];
+                    uint32_t i = tris[t + size_t(k)];
                     glm::vec2 tc = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uv[i * 2], uv[i * 2 + 1]);
                     mScene.vertices.push_back({p[k], n, tc});
                 }
@@ -405,7 +742,7 @@ private:
             for (size_t i = 0; i < vertexCount; ++i) {
                 glm::vec3 n = normalMatrix * glm::vec3(nrm[i * 3], nrm[i * 3 + 1], nrm[i * 3 + 2]);
                 float len = glm::length(n);
-                n = len > 1e-20f ? n / len : glm::vec3(0, 1, 0);
+                n = len > 1e-20f && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
                 glm::vec2 tc = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uv[i * 2], uv[i * 2 + 1]);
                 mScene.vertices.push_back({transformPos(uint32_t(i)), n, tc});
             }
@@ -414,44 +751,84 @@ private:
                 else mScene.indices.insert(mScene.indices.end(), {base + tris[t], base + tris[t + 1], base + tris[t + 2]});
             }
         }
-        if (mScene.vertices.size() > (size_t(1) << 31)) fail("scene has more than 2^31 vertices");
         mScene.draws.push_back({firstIndex, uint32_t(mScene.indices.size()) - firstIndex, material});
+    }
+
+    // A warning about a mesh's primitive, once however many nodes instance it.
+    void warnOnce(const std::string& text) {
+        if (std::find(mScene.warnings.begin(), mScene.warnings.end(), text) == mScene.warnings.end()) mScene.warnings.push_back(text);
     }
 };
 
-}  // namespace
-
-Scene loadGLTF(const std::filesystem::path& path) {
-    if (!std::filesystem::exists(path)) throw Error(path.string() + ": file not found");
+// Parses `bytes` (a .gltf's JSON or a whole .glb) with tinygltf through the bounded callbacks.
+Scene parse(const std::vector<uint8_t>& bytes, bool binary, const std::string& file, const fs::path& baseDir, MemoryBudget& budget,
+            const std::string& sceneName) {
+    if (binary) {
+        checkGLBLayout(bytes, file);
+        uint32_t jsonLength;
+        std::memcpy(&jsonLength, bytes.data() + 12, 4);
+        budget.reserve(double(jsonLength) * kJSONTreeBytesPerByte + double(bytes.size()), file + ": its JSON tree and binary chunk");
+    } else {
+        budget.reserve(double(bytes.size()) * kJSONTreeBytesPerByte, file + ": its JSON tree");
+    }
+    if (bytes.size() > size_t(UINT32_MAX)) throw Error(file + ": malformed glTF: larger than 4 GiB");
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
+    LoadContext ctx{&budget, &model, {}};
+    loader.SetFsCallbacks({&fsFileExists, &fsExpandFilePath, &fsReadWholeFile, &fsWriteWholeFile, &ctx});
+    loader.SetImageLoader(&loadImageCallback, &ctx);
     std::string err, warn;
     bool ok = false;
     try {
-        std::string ext = path.extension().string();
-        for (auto& c : ext) c = char(std::tolower(c));
-        if (ext == ".glb") ok = loader.LoadBinaryFromFile(&model, &err, &warn, path.string());
-        else ok = loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
+        if (binary)
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir.string());
+        else
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()), unsigned(bytes.size()),
+                                            baseDir.string());
+    } catch (const Error& e) {
+        throw Error(file + ": " + e.what());
     } catch (const std::exception& e) {
-        throw Error(path.string() + ": malformed glTF: " + e.what());
+        throw Error(file + ": malformed glTF: " + e.what());
     }
+    if (!ctx.error.empty()) throw Error(file + ": " + ctx.error);
     if (!ok) {
         std::string msg = err.empty() ? warn : err;
         while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) msg.pop_back();
         for (auto& c : msg)
-            if (c == '\n') c = ';';
-        throw Error(path.string() + ": malformed glTF: " + (msg.empty() ? "unknown error" : msg));
+            if (c == '\n' || c == '\r') c = ';';
+        throw Error(file + ": malformed glTF: " + (msg.empty() ? "unknown error" : msg));
     }
     for (const auto& e : model.extensionsRequired)
         if (e != "KHR_lights_punctual" && e != "KHR_materials_emissive_strength")
-            throw Error(path.string() + ": requires unsupported extension " + e);
+            throw Error(file + ": requires unsupported extension " + e);
 
     Scene scene;
-    scene.name = path.stem().string();
-    GLTFReader(model, path.string(), scene).load();
-    if (scene.indices.empty()) throw Error(path.string() + ": contains no triangles");
+    scene.name = sceneName;
+    GLTFReader(model, file, scene, budget, ctx.imageWarnings).load();
+    if (scene.indices.empty()) throw Error(file + ": contains no triangles");
     scene.finalize();
     return scene;
+}
+
+bool isBinaryName(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".glb";
+}
+
+}  // namespace
+
+Scene loadGLTF(const fs::path& path, double memoryBudgetMB) {
+    MemoryBudget budget(memoryBudgetMB);
+    std::vector<uint8_t> bytes = readBounded(path, budget, 1.0, "glTF file");
+    return parse(bytes, isBinaryName(path), path.string(), path.parent_path(), budget, path.stem().string());
+}
+
+Scene loadGLTFFromMemory(const std::vector<uint8_t>& bytes, bool binary, const std::string& name, const fs::path& baseDir,
+                         double memoryBudgetMB) {
+    MemoryBudget budget(memoryBudgetMB);
+    budget.reserve(double(bytes.size()), name + ": glTF data");
+    return parse(bytes, binary, name, baseDir, budget, fs::path(name).stem().string());
 }
 
 }  // namespace gi

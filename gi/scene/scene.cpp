@@ -152,9 +152,10 @@ Scene makeBuiltinScene(const std::string& name) {
     throw Error("unknown built-in scene '" + name + "' (valid: cornell, basic, spheres)");
 }
 
-Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder) {
+Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder, double memoryBudgetMB) {
     if (isBuiltinScene(scene)) return makeBuiltinScene(scene);
-    Scene s = loadGLTF(resolveAsset(scene, presetFolder));
+    if (scene.empty()) throw Error("key 'scene': empty (a built-in scene name or a glTF file path)");
+    Scene s = loadGLTF(resolveAsset(scene, presetFolder), memoryBudgetMB);
     if (s.cameras.empty()) s.cameras.push_back(frameBounds(s.bounds));
     return s;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gi/scene/scene_settings.h"
+#include "gi/util/budget.h"
 
 #include <glm/glm.hpp>
 
@@ -83,14 +84,21 @@ std::vector<std::string> builtinSceneNames();
 bool isBuiltinScene(const std::string& name);
 Scene makeBuiltinScene(const std::string& name);
 
-// glTF 2.0 (.gltf or .glb). Throws gi::Error naming the file and the broken element.
-Scene loadGLTF(const std::filesystem::path& path);
+// glTF 2.0 (.gltf or .glb). Throws gi::Error naming the file and the broken element. The memory
+// the file will take (its JSON tree, buffers, decoded images and triangles) is counted before it
+// is allocated and refused past `memoryBudgetMB` (render.memoryBudgetMB).
+Scene loadGLTF(const std::filesystem::path& path, double memoryBudgetMB = kDefaultMemoryBudgetMB);
+// The same from bytes in memory (a .gltf's JSON, or a whole .glb when `binary`); `name` stands
+// for the file in messages, and external URIs resolve against `baseDir`. Used by the fuzzers.
+Scene loadGLTFFromMemory(const std::vector<uint8_t>& bytes, bool binary, const std::string& name,
+                         const std::filesystem::path& baseDir, double memoryBudgetMB = kDefaultMemoryBudgetMB);
 
 // A camera that frames the bounds, looking at their centre from the front right and above.
 CameraSettings frameBounds(const Bounds& b);
 
 // Resolves a preset's scene string (built-in name, or file through the asset search path).
 // A file without cameras gets one framing its bounds.
-Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder = {});
+Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder = {},
+                double memoryBudgetMB = kDefaultMemoryBudgetMB);
 
 }  // namespace gi

@@ -34,6 +34,7 @@ std::vector<fs::path> assetSearchPath(const fs::path& presetFolder) {
 }
 
 fs::path resolveAsset(const std::string& name, const fs::path& presetFolder) {
+    if (name.empty()) throw Error("empty file name");
     fs::path p(name);
     if (p.is_absolute()) {
         if (fs::exists(p)) return p;
@@ -50,7 +51,16 @@ fs::path resolveAsset(const std::string& name, const fs::path& presetFolder) {
                 "; set GI_ASSET_PATH to add folders)");
 }
 
-std::string readTextFile(const fs::path& path) {
+std::string readTextFile(const fs::path& path, size_t maxBytes) {
+    std::error_code ec;
+    fs::file_status st = fs::status(path, ec);
+    if (ec || !fs::exists(st)) throw Error(path.string() + ": file not found");
+    if (fs::is_directory(st)) throw Error(path.string() + ": is a folder, not a file");
+    if (!fs::is_regular_file(st)) throw Error(path.string() + ": is not a regular file");
+    uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > maxBytes)
+        throw Error(path.string() + ": " + std::to_string(size) + " bytes, larger than the " + std::to_string(maxBytes) +
+                    " bytes such a file may have");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path.string() + ": cannot open file");
     std::stringstream ss;

@@ -21,8 +21,9 @@ std::vector<std::filesystem::path> assetSearchPath(const std::filesystem::path& 
 std::filesystem::path resolveAsset(const std::string& name,
                                    const std::filesystem::path& presetFolder = {});
 
-// Reads a whole file; throws gi::Error naming the file when it cannot.
-std::string readTextFile(const std::filesystem::path& path);
+// Reads a whole file; throws gi::Error naming the file when it cannot, when it is a folder or
+// no regular file, or when it is larger than `maxBytes`.
+std::string readTextFile(const std::filesystem::path& path, size_t maxBytes = size_t(1) << 30);
 
 // Writes a file atomically: a temporary file beside it, flushed, then renamed over the target,
 // so a crash or a full disk never leaves a half-written file in its place.

@@ -16,6 +16,7 @@ layout(binding = 0) uniform samplerCube uSource;  // mip 0 = the map, full mip c
 layout(binding = 0, rgba16f) uniform writeonly imageCube uDest;
 
 uniform int uSize;        // this mip's face size
+uniform int uRowOffset;   // first row of this dispatch's band (a large mip is cut into bands)
 uniform int uSourceSize;  // the source's mip-0 face size
 uniform int uMode;
 uniform float uRoughness;
@@ -30,7 +31,7 @@ float sourceMip(float pdf) {
 }
 
 void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
+    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(0, uRowOffset, 0);
     if (id.x >= uSize || id.y >= uSize) return;
     vec3 N = cubeDirection(id.z, id.xy, uSize);
     if (uMode == 2) {

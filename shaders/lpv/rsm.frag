@@ -3,6 +3,7 @@
 // (directional) or albedo * intensity * texel solid angle (spot), so the total does not depend
 // on the map's resolution.
 #include "common/shared.h"
+#include "common/material.glsl"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 uniform vec4 uBaseColor;
@@ -29,7 +30,7 @@ layout(location = 2) out vec4 oPosition;
 
 void main() {
     vec4 base = uBaseColor;
-    if (uHasTexture) base *= texture(uBaseColorTex, vUV);
+    if (uHasTexture) base *= sampleMaterial(uBaseColorTex, vUV);
     if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
     vec3 L;  // towards the light
     vec3 flux;

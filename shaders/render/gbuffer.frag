@@ -2,6 +2,7 @@
 // emissive. Alpha-masked materials discard below the cutoff. Back faces flip their normal so
 // single-sheet geometry (curtains, leaves) is lit from both sides.
 #include "common/shared.h"
+#include "common/material.glsl"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 uniform vec4 uBaseColor;
@@ -21,7 +22,7 @@ layout(location = 3) out vec4 oEmissive;
 
 void main() {
     vec4 base = uBaseColor;
-    if (uHasTexture) base *= texture(uBaseColorTex, vUV);
+    if (uHasTexture) base *= sampleMaterial(uBaseColorTex, vUV);
     if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
     vec3 n = normalize(vNormal);
     if (!gl_FrontFacing) n = -n;

@@ -2,6 +2,7 @@
 // stores distance / far so the six cube faces share one linear depth scale; without it the
 // depth is left to fixed function, which keeps early depth testing on.
 #include "common/shared.h"
+#include "common/material.glsl"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 uniform bool uHasTexture;
@@ -17,7 +18,7 @@ in vec2 vUV;
 
 void main() {
     if (uAlphaCutoff >= 0.0) {
-        float a = uBaseAlpha * (uHasTexture ? texture(uBaseColorTex, vUV).a : 1.0);
+        float a = uBaseAlpha * (uHasTexture ? sampleMaterial(uBaseColorTex, vUV).a : 1.0);
         if (a < uAlphaCutoff) discard;
     }
 #if LINEAR_DEPTH

@@ -6,6 +6,7 @@
 // Albedo is the diffuse albedo (base colour times 1 - metallic); emission is divided by the
 // scene's largest emission so it fits 8 bits; normals are stored as n * 0.5 + 0.5.
 #include "common/shared.h"
+#include "common/material.glsl"
 #include "vct/vct_shared.h"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
@@ -51,7 +52,7 @@ vec3 unswizzle(vec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx 
 void main() {
     if (any(lessThan(gl_FragCoord.xy, gBox.xy)) || any(greaterThan(gl_FragCoord.xy, gBox.zw))) discard;
     vec4 base = uBaseColor;
-    if (uHasTexture) base *= texture(uBaseColorTex, gUV);
+    if (uHasTexture) base *= sampleMaterial(uBaseColorTex, gUV);
     if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
 
     float slope = 0.5 * (abs(dFdx(gGrid.z)) + abs(dFdy(gGrid.z)));
