@@ -197,6 +197,18 @@ TEST(EnvironmentImage, BadEXRFilesAreRefused) {
 }
 
 // Cube faces are checked from their headers, all six before any is decoded.
+// A PNG whose ancillary chunk states 2 GB: libpng would allocate that in OpenImageIO's open()
+// (gi-fuzz found it through a glTF texture); the layout is checked first.
+TEST(EnvironmentImage, PNGChunkPastTheEndIsRefusedBeforeLibpng) {
+    auto dir = test::tempDir();
+    // A PNG signature, a 4x2 IHDR, then a tEXt chunk stating 0x7F000000 bytes in a 52-byte file.
+    std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R', 0, 0, 0, 4, 0, 0, 0, 2,
+                                8, 2, 0, 0, 0, 0, 0, 0, 0, 0x7F, 0, 0, 0, 't', 'E', 'X', 't', 'a', 'b', 'c', 'd', 'e', 'f', 'g', 'h', 'i', 'j', 'k'};
+    std::ofstream(dir / "chunk.png", std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+    EXPECT_ERROR_NAMES(loadError((dir / "chunk.png").string()), "chunk.png",
+                       "environment map is damaged: PNG chunk 'tEXt' at byte 33 states 2130706432 bytes, past the end of the image (52 bytes)");
+}
+
 TEST(EnvironmentImage, BadCubeFacesAreRefused) {
     std::filesystem::path dir = test::tempDir();
     std::string row(8 * 4, char(0));

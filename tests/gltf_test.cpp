@@ -1,6 +1,7 @@
 // glTF loading: a hand-made file checks hierarchy, instancing, cameras, lights and materials;
 // every glTF2 file of Debian's assimp-testmodels loads or fails with gi::Error, never crashes;
 // the shared scenes load with the triangle counts their README gives.
+#include "fuzz/mutator.h"
 #include "gi/scene/scene.h"
 #include "gi/util/error.h"
 #include "test_util.h"
@@ -17,20 +18,7 @@ namespace {
 
 using json = nlohmann::json;
 
-std::string base64(const std::vector<uint8_t>& data) {
-    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < data.size(); i += 3) {
-        uint32_t v = uint32_t(data[i]) << 16;
-        if (i + 1 < data.size()) v |= uint32_t(data[i + 1]) << 8;
-        if (i + 2 < data.size()) v |= data[i + 2];
-        out += t[(v >> 18) & 63];
-        out += t[(v >> 12) & 63];
-        out += i + 1 < data.size() ? t[(v >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? t[v & 63] : '=';
-    }
-    return out;
-}
+using fuzz::base64;
 
 // One triangle (0,0,0) (1,0,0) (0,1,0) with +z normals, instanced by two nodes under a parent.
 json handMadeGLTF() {

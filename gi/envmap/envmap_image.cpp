@@ -3,6 +3,7 @@
 #include "gi/render/image.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
+#include "gi/util/png_layout.h"
 
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/constants.hpp>
@@ -52,6 +53,8 @@ OpenedImage openImage(const std::filesystem::path& path) {
     if (std::filesystem::is_directory(path, ec)) throw Error(img.name + ": environment map is a folder, not an image file");
     if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec)
         throw Error(img.name + ": environment map is an empty file");
+    if (std::string problem = pngFileLayoutProblem(path); !problem.empty())
+        throw Error(img.name + ": environment map is damaged: " + problem);
     img.in = OIIO::ImageInput::open(img.name);
     if (!img.in) throw Error(img.name + ": cannot read environment map: " + oneLine(OIIO::geterror()));
     img.spec = img.in->spec();

@@ -18,6 +18,7 @@
 #include "gi/scene/scene.h"
 #include "gi/util/budget.h"
 #include "gi/util/error.h"
+#include "gi/util/png_layout.h"
 
 #include <tiny_gltf.h>
 
@@ -81,7 +82,6 @@ struct LoadContext {
     MemoryBudget* budget = nullptr;
     tinygltf::Model* model = nullptr;
     std::string error;
-    std::map<int, std::string> imageWarnings;  // why an image was left empty, by index
 };
 
 // Anything that exists "exists", so that fsReadWholeFile names what is wrong with it.
@@ -109,17 +109,22 @@ bool fsWriteWholeFile(std::string* err, const std::string&, const std::vector<un
     return false;
 }
 
-// Decodes a PNG or JPEG held in memory to 8-bit RGBA with OpenImageIO, after counting the size
-// its header states. Returns false with `warning` set when the bytes are no image it can read.
-bool decodeImage(const uint8_t* bytes, size_t size, int index, MemoryBudget& budget, tinygltf::Image& image,
-                 std::string& warning) {
+// Decodes a PNG or JPEG held in memory to 8-bit RGBA with OpenImageIO, after checking a PNG's
+// chunk layout and counting the size its header states. Returns false with `warning` set when
+// the bytes are no image it can read.
+bool decodeImage(const uint8_t* bytes, size_t size, int index, MemoryBudget& budget, Texture& image, std::string& warning) {
     const char* name = nullptr;
-    if (size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0) name = "image.png";
+    if (isPNG(bytes, size)) name = "image.png";
     else if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) name = "image.jpg";
     if (!name) {
         warning = "image " + str(size_t(index)) + " is neither PNG nor JPEG";
         return false;
     }
+    if (name == std::string("image.png"))
+        if (std::string problem = pngLayoutProblem(bytes, size); !problem.empty()) {
+            warning = "image " + str(size_t(index)) + ": " + problem;
+            return false;
+        }
     OIIO::Filesystem::IOMemReader reader(bytes, size);
     auto in = OIIO::ImageInput::open(name, nullptr, &reader);
     if (!in) {
@@ -133,9 +138,9 @@ bool decodeImage(const uint8_t* bytes, size_t size, int index, MemoryBudget& bud
         warning = "image " + str(size_t(index)) + " has no pixels";
         return false;
     }
-    // The decoded file and the RGBA copy.
+    // The decoded file, the RGBA copy, and a progressive JPEG's 16-bit coefficients.
     double pixels = double(spec.width) * double(spec.height);
-    budget.reserve(pixels * (double(spec.nchannels) + 4.0),
+    budget.reserve(pixels * (3.0 * double(spec.nchannels) + 4.0),
                    "image " + str(size_t(index)) + " (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ")");
     int channels = spec.nchannels;
     std::vector<uint8_t> px(size_t(spec.width) * size_t(spec.height) * size_t(channels));
@@ -147,13 +152,10 @@ bool decodeImage(const uint8_t* bytes, size_t size, int index, MemoryBudget& bud
     }
     image.width = spec.width;
     image.height = spec.height;
-    image.component = 4;
-    image.bits = 8;
-    image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image.image.resize(size_t(spec.width) * size_t(spec.height) * 4);
+    image.rgba.resize(size_t(spec.width) * size_t(spec.height) * 4);
     for (size_t i = 0; i < size_t(spec.width) * size_t(spec.height); ++i) {
         const uint8_t* s = &px[i * size_t(channels)];
-        uint8_t* d = &image.image[i * 4];
+        uint8_t* d = &image.rgba[i * 4];
         switch (channels) {
             case 1: d[0] = d[1] = d[2] = s[0]; d[3] = 255; break;
             case 2: d[0] = d[1] = d[2] = s[0]; d[3] = s[1]; break;
@@ -165,13 +167,14 @@ bool decodeImage(const uint8_t* bytes, size_t size, int index, MemoryBudget& bud
 }
 
 // tinygltf's image callback. For an image in a buffer view, tinygltf hands over a pointer
-// computed from the view's unchecked offset: the view is checked here before it is read.
-// Images that cannot be decoded are left empty (the material then goes untextured, with a
-// warning); images that would pass the budget or lie outside their buffer fail the load.
-bool loadImageCallback(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
+// computed from the view's unchecked offset: the view is checked here before it is read. The
+// encoded bytes are kept (counted against the budget) and decoded only when a material uses
+// the image (GLTFReader::textureFor), so unused normal or roughness maps cost no decoding.
+bool loadImageCallback(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                        const unsigned char* bytes, int size, void* user) {
     auto* ctx = static_cast<LoadContext*>(user);
     try {
+        size_t length = size > 0 ? size_t(size) : 0;
         if (image->bufferView >= 0) {
             const auto& views = ctx->model->bufferViews;
             if (size_t(image->bufferView) >= views.size())
@@ -186,15 +189,11 @@ bool loadImageCallback(tinygltf::Image* image, const int index, std::string* err
                             str(view.byteOffset) + ", length " + str(view.byteLength) + ") lies outside buffer " +
                             str(size_t(view.buffer)) + " (" + str(data.size()) + " bytes)");
             bytes = data.data() + view.byteOffset;
-            size = 0;
-            if (view.byteLength > size_t(INT32_MAX)) throw Error("image " + str(size_t(index)) + ": bufferView is over 2 GiB");
-            size = int(view.byteLength);
+            length = view.byteLength;
         }
-        std::string warning;
-        if (size <= 0 || !bytes || !decodeImage(bytes, size_t(size), index, *ctx->budget, *image, warning)) {
-            ctx->imageWarnings[index] = warning.empty() ? "image " + str(size_t(index)) + " is empty" : warning;
-            image->image.clear();
-        }
+        ctx->budget->reserve(double(length), "image " + str(size_t(index)) + " (" + str(length) + " encoded bytes)");
+        image->image.assign(bytes, bytes + (bytes ? length : 0));
+        image->width = image->height = image->component = image->bits = -1;  // encoded, not decoded
         return true;
     } catch (const Error& e) {
         if (ctx->error.empty()) ctx->error = e.what();
@@ -233,9 +232,8 @@ void checkGLBLayout(const std::vector<uint8_t>& b, const std::string& file) {
 
 class GLTFReader {
 public:
-    GLTFReader(tinygltf::Model& model, const std::string& file, Scene& scene, MemoryBudget& budget,
-               const std::map<int, std::string>& imageWarnings)
-        : mModel(model), mFile(file), mScene(scene), mBudget(budget), mImageWarnings(imageWarnings) {}
+    GLTFReader(tinygltf::Model& model, const std::string& file, Scene& scene, MemoryBudget& budget)
+        : mModel(model), mFile(file), mScene(scene), mBudget(budget) {}
 
     [[noreturn]] void fail(const std::string& what) const { throw Error(mFile + ": " + what); }
 
@@ -279,7 +277,6 @@ private:
     std::string mFile;
     Scene& mScene;
     MemoryBudget& mBudget;
-    const std::map<int, std::string>& mImageWarnings;
     std::map<int, int> mImageToTexture;
     std::vector<Instance> mInstances;
     size_t mNodeVisits = 0;
@@ -492,20 +489,17 @@ private:
         auto it = mImageToTexture.find(source);
         if (it != mImageToTexture.end()) return it->second;
         tinygltf::Image& img = mModel.images[size_t(source)];
-        // The image callback decoded it to 8-bit RGBA, or left it empty.
-        if (img.width <= 0 || img.height <= 0 || img.component != 4 ||
-            img.image.size() != size_t(img.width) * size_t(img.height) * 4) {
-            auto why = mImageWarnings.find(source);
-            mScene.warnings.push_back((why != mImageWarnings.end() ? why->second : "image " + std::to_string(source) + " could not be decoded") +
+        // The image callback kept the encoded bytes (none when an external file was missing).
+        Texture t;
+        std::string warning;
+        if (img.image.empty() || !decodeImage(img.image.data(), img.image.size(), source, mBudget, t, warning)) {
+            mScene.warnings.push_back((warning.empty() ? "image " + std::to_string(source) + " has no data" : warning) +
                                       (img.uri.empty() ? "" : " ('" + img.uri + "')") + "; its texture is left out");
             mImageToTexture[source] = -1;
             return -1;
         }
-        Texture t;
         t.name = img.name.empty() ? img.uri : img.name;
-        t.width = img.width;
-        t.height = img.height;
-        t.rgba = std::move(img.image);
+        img.image = {};
         mScene.textures.push_back(std::move(t));
         return mImageToTexture[source] = int(mScene.textures.size()) - 1;
     }
@@ -804,7 +798,7 @@ Scene parse(const std::vector<uint8_t>& bytes, bool binary, const std::string& f
 
     Scene scene;
     scene.name = sceneName;
-    GLTFReader(model, file, scene, budget, ctx.imageWarnings).load();
+    GLTFReader(model, file, scene, budget).load();
     if (scene.indices.empty()) throw Error(file + ": contains no triangles");
     scene.finalize();
     return scene;

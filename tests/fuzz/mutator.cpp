@@ -21,21 +21,6 @@ void putU32(std::vector<uint8_t>& b, uint32_t v) {
     b.insert(b.end(), p, p + 4);
 }
 
-std::string base64(const std::vector<uint8_t>& data) {
-    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < data.size(); i += 3) {
-        uint32_t v = uint32_t(data[i]) << 16;
-        if (i + 1 < data.size()) v |= uint32_t(data[i + 1]) << 8;
-        if (i + 2 < data.size()) v |= data[i + 2];
-        out += t[(v >> 18) & 63];
-        out += t[(v >> 12) & 63];
-        out += i + 1 < data.size() ? t[(v >> 6) & 63] : '=';
-        out += i + 2 < data.size() ? t[v & 63] : '=';
-    }
-    return out;
-}
-
 // Numbers that break range arithmetic: zero, signs, powers of two at type limits, the wrapped
 // offsets hostile files use, huge floats.
 json interestingNumber(std::mt19937_64& rng, const json& current) {
@@ -71,6 +56,12 @@ const T& pickFrom(const std::vector<T>& v, std::mt19937_64& rng) {
 size_t below(std::mt19937_64& rng, size_t n) { return n == 0 ? 0 : std::uniform_int_distribution<size_t>(0, n - 1)(rng); }
 
 // Keys whose values index another array of the file.
+// The length of the document's top-level array `key` (0 when it is missing or no array: the
+// libFuzzer harness hands in documents that earlier edits broke).
+size_t arraySize(const json& doc, const char* key) {
+    return doc.is_object() && doc.contains(key) && doc[key].is_array() ? doc[key].size() : 0;
+}
+
 bool isReferenceKey(const std::string& key) {
     static const char* keys[] = {"bufferView", "buffer", "indices", "material", "mesh", "camera", "source", "index", "sampler",
                                  "POSITION", "NORMAL", "TEXCOORD_0", "TEXCOORD_1", "TANGENT", "scene", "light", "texCoord"};
@@ -204,8 +195,8 @@ json randomEdits(const GLTFSeed& seed, std::mt19937_64& rng) {
                 }
                 break;
             case 3: {  // a sparse block on an accessor
-                size_t accessors = seed.doc.contains("accessors") ? seed.doc["accessors"].size() : 0;
-                size_t views = seed.doc.contains("bufferViews") ? seed.doc["bufferViews"].size() : 1;
+                size_t accessors = arraySize(seed.doc, "accessors");
+                size_t views = std::max<size_t>(arraySize(seed.doc, "bufferViews"), 1);
                 static const std::vector<int> types = {5121, 5123, 5125, 5126, 5120};
                 json sparse = {{"count", interestingNumber(rng, json(4))},
                                {"indices", {{"bufferView", int(below(rng, views + 1))}, {"byteOffset", interestingNumber(rng, json(0))},
@@ -234,11 +225,14 @@ json randomEdits(const GLTFSeed& seed, std::mt19937_64& rng) {
                 break;
             }
             case 6: {  // an image header: PNG width/height, chunk lengths, JPEG markers
-                if (!seed.doc.contains("images") || seed.doc["images"].empty()) break;
-                const json& img = seed.doc["images"][below(rng, seed.doc["images"].size())];
-                if (!img.contains("bufferView")) break;
-                const json& view = seed.doc["bufferViews"][img["bufferView"].get<size_t>()];
-                size_t start = view.value("byteOffset", size_t(0));
+                size_t images = arraySize(seed.doc, "images");
+                if (images == 0) break;
+                const json& img = seed.doc["images"][below(rng, images)];
+                if (!img.is_object() || !img.contains("bufferView") || !img["bufferView"].is_number_unsigned()) break;
+                size_t viewIndex = img["bufferView"].get<size_t>();
+                if (viewIndex >= arraySize(seed.doc, "bufferViews") || !seed.doc["bufferViews"][viewIndex].is_object()) break;
+                const json& offset = seed.doc["bufferViews"][viewIndex].value("byteOffset", json(0));
+                size_t start = offset.is_number_unsigned() ? offset.get<size_t>() : 0;
                 static const std::vector<size_t> fields = {8, 12, 16, 20, 24, 25, 28, 33, 37};
                 uint32_t v = below(rng, 2) ? 0xFFFFFF7Fu : uint32_t(rng());
                 uint8_t p[4];
@@ -256,7 +250,7 @@ json randomEdits(const GLTFSeed& seed, std::mt19937_64& rng) {
                 break;
             }
             case 9: {  // an accessor's type or component type
-                size_t accessors = seed.doc.contains("accessors") ? seed.doc["accessors"].size() : 0;
+                size_t accessors = arraySize(seed.doc, "accessors");
                 if (!accessors) break;
                 std::string a = "/accessors/" + std::to_string(below(rng, accessors));
                 static const std::vector<json> types = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT4", "VEC9", 3};
@@ -267,7 +261,7 @@ json randomEdits(const GLTFSeed& seed, std::mt19937_64& rng) {
                 break;
             }
             case 10: {  // the node hierarchy: shared children, cycles, degenerate transforms
-                size_t nodes = seed.doc.contains("nodes") ? seed.doc["nodes"].size() : 0;
+                size_t nodes = arraySize(seed.doc, "nodes");
                 if (!nodes) break;
                 std::string n = "/nodes/" + std::to_string(below(rng, nodes));
                 switch (below(rng, 4)) {
@@ -331,6 +325,21 @@ std::string mutatePreset(const std::string& text, std::mt19937_64& rng) {
         }
     }
     return doc.dump();
+}
+
+std::string base64(const std::vector<uint8_t>& data) {
+    static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < data.size(); i += 3) {
+        uint32_t v = uint32_t(data[i]) << 16;
+        if (i + 1 < data.size()) v |= uint32_t(data[i + 1]) << 8;
+        if (i + 2 < data.size()) v |= data[i + 2];
+        out += t[(v >> 18) & 63];
+        out += t[(v >> 12) & 63];
+        out += i + 1 < data.size() ? t[(v >> 6) & 63] : '=';
+        out += i + 2 < data.size() ? t[v & 63] : '=';
+    }
+    return out;
 }
 
 std::mt19937_64 iterationRng(uint64_t seed, uint64_t i) {

@@ -52,6 +52,9 @@ json randomEdits(const GLTFSeed& seed, std::mt19937_64& rng);
 // removed, retyped or duplicated, unknown keys added, or the text's bytes flipped.
 std::string mutatePreset(const std::string& text, std::mt19937_64& rng);
 
+// RFC 4648 base64, for data URIs.
+std::string base64(const std::vector<uint8_t>& data);
+
 // The generator of iteration `i` of a run with `seed`: iterations are independent, so one can be
 // replayed alone.
 std::mt19937_64 iterationRng(uint64_t seed, uint64_t i);
