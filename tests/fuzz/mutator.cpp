@@ -31,11 +31,19 @@ json interestingNumber(std::mt19937_64& rng, const json& current) {
     std::uniform_int_distribution<size_t> pick(0, values.size() + 3);
     size_t k = pick(rng);
     if (k < values.size()) return values[k];
+    // Neighbours of the current value: integers in wrapping 64-bit arithmetic (the wrap is the
+    // point), floats as they are.
+    if (current.is_number_integer()) {
+        bool isUnsigned = current.is_number_unsigned();
+        uint64_t u = isUnsigned ? current.get<uint64_t>() : uint64_t(current.get<int64_t>());
+        uint64_t next = k == values.size() ? u + 1 : k == values.size() + 1 ? u - 1 : k == values.size() + 2 ? u * 1000 : rng() % 64;
+        return isUnsigned ? json(next) : json(int64_t(next));
+    }
     double v = current.is_number() ? current.get<double>() : 1.0;
     switch (k - values.size()) {
-        case 0: return current.is_number_integer() || current.is_number_unsigned() ? json(int64_t(v) + 1) : json(v * 1.0001);
-        case 1: return current.is_number_integer() || current.is_number_unsigned() ? json(int64_t(v) - 1) : json(-v);
-        case 2: return current.is_number_integer() || current.is_number_unsigned() ? json(int64_t(v) * 1000) : json(v * 1e6);
+        case 0: return json(v * 1.0001);
+        case 1: return json(-v);
+        case 2: return json(v * 1e6);
         default: return json(int64_t(rng() % 64));
     }
 }
