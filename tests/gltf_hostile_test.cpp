@@ -164,6 +164,31 @@ TEST(HostileGLTF, ShortFuzzRunOnlyLoadsOrRefusesWithOneLine) {
     EXPECT_GT(refused, 100); // and break many
 }
 
+TEST(HostilePreset, RegressionCasesGiveTheirErrors) {
+    json cases = json::parse(readTextFile(fs::path(GI_SOURCE_DIR) / "tests" / "fuzz" / "preset_regressions.json"))["cases"];
+    ASSERT_GE(cases.size(), 1u);
+    for (const json& c : cases) {
+        std::string name = c["name"];
+        try {
+            presetFromText(c["text"].get<std::string>(), "fuzz.json");
+            ADD_FAILURE() << name << " parsed";
+        } catch (const Error& e) {
+            std::string msg = e.what();
+            EXPECT_NE(msg.find(c["expect"].get<std::string>()), std::string::npos) << name << ": " << msg;
+            EXPECT_EQ(msg.rfind("fuzz.json", 0), 0u) << name << ": " << msg;
+            EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        }
+    }
+    // --set takes its value as JSON: a number past a double's range is no number, and says so.
+    Preset p;
+    try {
+        applySetting(p, "camera.fovY=1e999");
+        ADD_FAILURE() << "1e999 was taken as a field of view";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("key 'camera.fovY': expected a number"), std::string::npos) << e.what();
+    }
+}
+
 class HostileGLTFRender : public test::GLTest {};
 
 TEST_F(HostileGLTFRender, TextureCoordinatesFarFromTheOriginRenderPromptly) {

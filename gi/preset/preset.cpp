@@ -83,16 +83,17 @@ Preset presetFromJson(const json& j, const std::string& context) {
 }
 
 Preset presetFromText(const std::string& text, const std::string& context) {
-    json j = json::parse(text, nullptr, false);
-    if (j.is_discarded()) {
-        // Parse again with exceptions on to get the position of the first error.
-        try {
-            json again = json::parse(text);
-            (void)again;
-        } catch (const json::parse_error& e) {
-            throw Error(context + ": invalid JSON at byte " + std::to_string(e.byte));
-        }
-        throw Error(context + ": invalid JSON");
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::parse_error& e) {
+        throw Error(context + ": invalid JSON at byte " + std::to_string(e.byte));
+    } catch (const json::exception& e) {
+        // Not only syntax: a number past the range of a double (1e400) is out_of_range.406.
+        std::string what = e.what();
+        for (auto& c : what)
+            if (c == '\n') c = ' ';
+        throw Error(context + ": invalid JSON: " + what);
     }
     return presetFromJson(j, context);
 }

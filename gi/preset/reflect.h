@@ -195,7 +195,12 @@ void fromJson(S& s, const json& j, const std::string& context, const std::string
 // parsed as JSON (numbers, true/false, [x,y,z]); anything else is taken as a string.
 template <Settings S>
 bool setField(S& s, const std::string& key, const std::string& valueText, const std::string& fullKey) {
-    json value = json::parse(valueText, nullptr, false);
+    json value;
+    try {
+        value = json::parse(valueText, nullptr, false);
+    } catch (const json::exception&) {
+        value = json(json::value_t::discarded);  // a number past a double's range (1e999) throws even so
+    }
     if (value.is_discarded()) value = valueText;
     bool found = false;
     S copy = s;

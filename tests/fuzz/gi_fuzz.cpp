@@ -224,7 +224,7 @@ private:
         std::string assignment;
         if (rng() % 3 == 0) {
             static const std::vector<std::string> values = {"-1", "0", "4096", "1e300", "nan", "inf", "", "x", "[1,2]", "true",
-                                                            "18446744073709551615", "-2147483649", "0.5"};
+                                                            "18446744073709551615", "-2147483649", "0.5", "1e999", "-1e999"};
             assignment = mKeys[rng() % mKeys.size()] + "=" + values[rng() % values.size()];
         }
         if (print) std::printf("preset: %s\nset: %s\n", text.c_str(), assignment.c_str());
