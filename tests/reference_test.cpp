@@ -218,13 +218,24 @@ TEST(Reference, CacheKeyCoversWhatDeterminesTheImage) {
     EXPECT_EQ(key, referenceKey(scene, toned, rs));
 }
 
-TEST(Reference, CacheStoresAndReloadsExactly) {
-    auto dir = test::tempDir();
-    setenv("GI_CACHE_DIR", dir.c_str(), 1);
-    Scene scene = makeBuiltinScene("cornell");
-    FrameSettings fs = frameSettings(Preset{}, scene, 16, 12);
+// A 16x12 Cornell box at 4 spp whose references go to a fresh cache folder: GI_CACHE_DIR
+// names it until the test unsets it.
+struct CacheCase {
+    std::filesystem::path dir;
+    Scene scene;
+    FrameSettings fs;
     ReferenceSettings rs;
-    rs.spp = 4;
+};
+CacheCase tinyCornellInFreshCache() {
+    CacheCase c{test::tempDir(), makeBuiltinScene("cornell"), {}, {}};
+    setenv("GI_CACHE_DIR", c.dir.c_str(), 1);
+    c.fs = frameSettings(Preset{}, c.scene, 16, 12);
+    c.rs.spp = 4;
+    return c;
+}
+
+TEST(Reference, CacheStoresAndReloadsExactly) {
+    auto [dir, scene, fs, rs] = tinyCornellInFreshCache();
     CachedReference first = cachedReference(scene, fs, rs);
     CachedReference second = cachedReference(scene, fs, rs);
     unsetenv("GI_CACHE_DIR");
@@ -238,12 +249,7 @@ TEST(Reference, CacheStoresAndReloadsExactly) {
 // one line naming the key, the estimate and the settings; a cached one costs nothing and is
 // never refused (the budget is not part of the key).
 TEST(Reference, TimeBudgetRefusesFreshReferencesNotCachedOnes) {
-    auto dir = test::tempDir();
-    setenv("GI_CACHE_DIR", dir.c_str(), 1);
-    Scene scene = makeBuiltinScene("cornell");
-    FrameSettings fs = frameSettings(Preset{}, scene, 16, 12);
-    ReferenceSettings rs;
-    rs.spp = 4;
+    auto [dir, scene, fs, rs] = tinyCornellInFreshCache();
     EXPECT_FALSE(referenceCached(scene, fs, rs));
     CachedReference first = cachedReference(scene, fs, rs);
     EXPECT_TRUE(referenceCached(scene, fs, rs));

@@ -107,14 +107,9 @@ double Environment::estimateSamples(const EnvironmentSettings& s) {
 double Environment::estimateSeconds(const EnvironmentSettings& s) { return estimateSamples(s) / kPrefilterSamplesPerSecond; }
 
 void Environment::checkTimeBudget(const EnvironmentSettings& s, double budgetSeconds) {
-    double seconds = estimateSeconds(s);
-    if (seconds <= budgetSeconds) return;
-    char buf[400];
-    std::snprintf(buf, sizeof buf,
-                  "key 'render.timeBudgetSeconds': environment prefilter estimated at %.0f s (cubeSize %d, samples %d) exceeds the "
-                  "budget of %.0f s; lower environment.samples or environment.cubeSize, or raise render.timeBudgetSeconds",
-                  std::ceil(seconds), s.cubeSize, s.samples, budgetSeconds);
-    throw Error(buf);
+    gi::checkTimeBudget(estimateSeconds(s), budgetSeconds, "environment prefilter",
+                        "cubeSize " + std::to_string(s.cubeSize) + ", samples " + std::to_string(s.samples),
+                        "lower environment.samples or environment.cubeSize");
 }
 
 size_t Environment::estimateBytes(const EnvironmentSettings& s) {

@@ -1,4 +1,5 @@
 #include "gi/reference/reference_cache.h"
+#include "gi/util/budget.h"
 
 #include "gi/envmap/envmap_image.h"
 #include "gi/preset/reflect.h"
@@ -213,15 +214,10 @@ double estimateReferenceSeconds(const FrameSettings& fs, const ReferenceSettings
 
 void checkReferenceTimeBudget(const FrameSettings& fs, const ReferenceSettings& rs, int references) {
     if (references <= 0) return;
-    double seconds = estimateReferenceSeconds(fs, rs) * references;
-    if (seconds <= fs.render.timeBudgetSeconds) return;
     std::string what = references > 1 ? std::to_string(references) + " path-traced references" : "path-traced reference";
-    char buf[400];
-    std::snprintf(buf, sizeof buf,
-                  "key 'render.timeBudgetSeconds': %s estimated at %.0f s (%dx%d, %d spp) exceeds the budget of %.0f s; "
-                  "lower reference.spp (--spp) or the image size, or raise render.timeBudgetSeconds",
-                  what.c_str(), std::ceil(seconds), fs.width, fs.height, rs.spp, double(fs.render.timeBudgetSeconds));
-    throw Error(buf);
+    checkTimeBudget(estimateReferenceSeconds(fs, rs) * references, fs.render.timeBudgetSeconds, what,
+                    std::to_string(fs.width) + "x" + std::to_string(fs.height) + ", " + std::to_string(rs.spp) + " spp",
+                    "lower reference.spp (--spp) or the image size");
 }
 
 CachedReference cachedReference(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs,

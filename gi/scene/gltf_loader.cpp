@@ -18,6 +18,7 @@
 #include "gi/scene/scene.h"
 #include "gi/util/budget.h"
 #include "gi/util/error.h"
+#include "gi/util/paths.h"
 #include "gi/util/png_layout.h"
 
 #include <tiny_gltf.h>
@@ -61,13 +62,7 @@ bool fits(size_t offset, size_t length, size_t limit) { return offset <= limit &
 
 // A file read whole, after checking it is a regular file and counting its size.
 std::vector<uint8_t> readBounded(const fs::path& path, MemoryBudget& budget, double bytesPerByte, const std::string& what) {
-    std::error_code ec;
-    fs::file_status st = fs::status(path, ec);
-    if (ec || !fs::exists(st)) throw Error(path.string() + ": file not found");
-    if (fs::is_directory(st)) throw Error(path.string() + ": is a folder, not a " + what);
-    if (!fs::is_regular_file(st)) throw Error(path.string() + ": is not a regular file");
-    uintmax_t size = fs::file_size(path, ec);
-    if (ec) throw Error(path.string() + ": cannot read its size: " + ec.message());
+    uintmax_t size = regularFileSize(path, what);
     budget.reserve(double(size) * bytesPerByte, path.string() + ": " + what + " of " + str(size_t(size)) + " bytes");
     std::vector<uint8_t> bytes(static_cast<size_t>(size));
     std::ifstream in(path, std::ios::binary);

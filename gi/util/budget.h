@@ -4,6 +4,7 @@
 
 #include "gi/util/error.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -35,5 +36,17 @@ private:
     double mLimit;
     double mUsed = 0.0;
 };
+
+// Work estimated at `seconds` past render.timeBudgetSeconds is refused with one line naming the
+// key, the work, the estimate (`detail`: what it depends on) and what to lower (`remedy`).
+inline void checkTimeBudget(double seconds, double budgetSeconds, const std::string& work, const std::string& detail,
+                            const std::string& remedy) {
+    if (seconds <= budgetSeconds) return;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " estimated at %.0f s (", std::ceil(seconds));
+    std::string message = "key 'render.timeBudgetSeconds': " + work + buf + detail;
+    std::snprintf(buf, sizeof buf, ") exceeds the budget of %.0f s; ", budgetSeconds);
+    throw Error(message + buf + remedy + ", or raise render.timeBudgetSeconds");
+}
 
 }  // namespace gi

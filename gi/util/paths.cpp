@@ -51,14 +51,20 @@ fs::path resolveAsset(const std::string& name, const fs::path& presetFolder) {
                 "; set GI_ASSET_PATH to add folders)");
 }
 
-std::string readTextFile(const fs::path& path, size_t maxBytes) {
+uintmax_t regularFileSize(const fs::path& path, const std::string& what) {
     std::error_code ec;
     fs::file_status st = fs::status(path, ec);
     if (ec || !fs::exists(st)) throw Error(path.string() + ": file not found");
-    if (fs::is_directory(st)) throw Error(path.string() + ": is a folder, not a file");
+    if (fs::is_directory(st)) throw Error(path.string() + ": is a folder, not a " + what);
     if (!fs::is_regular_file(st)) throw Error(path.string() + ": is not a regular file");
     uintmax_t size = fs::file_size(path, ec);
-    if (!ec && size > maxBytes)
+    if (ec) throw Error(path.string() + ": cannot read its size: " + ec.message());
+    return size;
+}
+
+std::string readTextFile(const fs::path& path, size_t maxBytes) {
+    uintmax_t size = regularFileSize(path, "file");
+    if (size > maxBytes)
         throw Error(path.string() + ": " + std::to_string(size) + " bytes, larger than the " + std::to_string(maxBytes) +
                     " bytes such a file may have");
     std::ifstream in(path, std::ios::binary);

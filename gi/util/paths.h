@@ -21,6 +21,10 @@ std::vector<std::filesystem::path> assetSearchPath(const std::filesystem::path& 
 std::filesystem::path resolveAsset(const std::string& name,
                                    const std::filesystem::path& presetFolder = {});
 
+// The size of `path`, after checking it names a regular file; throws gi::Error naming the file
+// ("file not found", "is a folder, not a WHAT", "is not a regular file") otherwise.
+uintmax_t regularFileSize(const std::filesystem::path& path, const std::string& what);
+
 // Reads a whole file; throws gi::Error naming the file when it cannot, when it is a folder or
 // no regular file, or when it is larger than `maxBytes`.
 std::string readTextFile(const std::filesystem::path& path, size_t maxBytes = size_t(1) << 30);
