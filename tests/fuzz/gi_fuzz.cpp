@@ -70,11 +70,14 @@ void onAlarm(int) {
     _exit(3);
 }
 
+#ifndef GI_FUZZ_ASAN
+// Without a sanitizer's death callback, fatal signals print the replay line themselves.
 void onFatalSignal(int sig) {
     printReplay();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
+#endif
 
 struct Outcome {
     bool loaded = false;
