@@ -146,6 +146,26 @@ TEST(Preset, ListSettingsCoversEveryKeyOnce) {
         EXPECT_TRUE(keys.count(k)) << k;
 }
 
+TEST(Preset, SceneCameraBringsItsClipPlanes) {
+    // A scene in millimetres: the file's camera (or the one framing the bounds) sets near and far;
+    // the preset's default far plane of 100 would clip everything away.
+    Scene scene;
+    CameraSettings fileCamera;
+    fileCamera.eye = {0.0f, 0.0f, 2500.0f};
+    fileCamera.target = {0.0f, 0.0f, 0.0f};
+    fileCamera.near = 12.5f;
+    fileCamera.far = 7500.0f;
+    scene.cameras.push_back(fileCamera);
+    Preset p;
+    p.camera.sceneCamera = 0;
+    FrameSettings fs = frameSettings(p, scene, 16, 16);
+    EXPECT_EQ(fs.camera.near, 12.5f);
+    EXPECT_EQ(fs.camera.far, 7500.0f);
+    EXPECT_EQ(fs.camera.eye, fileCamera.eye);
+    p.camera.sceneCamera = -1;
+    EXPECT_EQ(frameSettings(p, scene, 16, 16).camera.far, Preset{}.camera.far);
+}
+
 TEST(Preset, AssetSearchPathOrder) {
     auto dir = test::tempDir();
     std::ofstream(dir / "a.gltf") << "{}";

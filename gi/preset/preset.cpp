@@ -198,6 +198,10 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
         fs.camera.target = c.target;
         fs.camera.up = c.up;
         fs.camera.fovY = c.fovY;
+        // The file's (or the framing camera's) clip planes: a scene in millimetres lies past the
+        // preset's default far plane and would render black.
+        fs.camera.near = c.near;
+        fs.camera.far = c.far;
     }
     fs.lights = p.lightsFromScene ? scene.lights : p.lights;
     if (p.lightsFromScene && scene.lights.empty()) {
