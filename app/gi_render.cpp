@@ -7,6 +7,7 @@
 #include "gi/render/renderer.h"
 #include "gi/render/strokes.h"
 #include "common/shared.h"
+#include "gi/envmap/environment.h"
 #include "gi/gl/debug.h"
 #include "gi/lpv/lpv.h"
 #include "gi/metrics/metrics.h"
@@ -135,9 +136,10 @@ std::vector<gi::Stroke> segmentText(const std::string& text, float x, float y, f
 // all of them on one sheet (views/environment.mips.png, four to a row, mip 0 at the top left),
 // each labelled with its index (yellow) and roughness (white).
 void writeEnvironmentMips(const gi::Renderer& renderer, const fs::path& dir) {
-    const gi::Environment& env = renderer.environment();
+    const gi::Environment* envPass = renderer.activePass<gi::Environment>();
+    if (!envPass || !envPass->ready() || envPass->mips().empty()) return;
+    const gi::Environment& env = *envPass;
     const std::vector<gi::Environment::MipInfo>& mips = env.mips();
-    if (!env.ready() || mips.empty()) return;
     const int tileW = 256, tileH = 128, gap = 4, columns = std::min(int(mips.size()), 4);
     const int rows = (int(mips.size()) + columns - 1) / columns;
     const int sheetW = columns * tileW + (columns - 1) * gap, sheetH = rows * tileH + (rows - 1) * gap;
@@ -230,9 +232,9 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "gi-render: warning: %s has no lights and the preset names none; a default sun is used\n",
                      scene.name.c_str());
     gi::FrameSettings frame = gi::frameSettings(preset, scene, width, height);
-    if (frame.technique == gi::TechniqueKind::LPV)
-        if (std::string note = gi::lpvIgnoredLights(frame.lights); !note.empty())
-            std::fprintf(stderr, "gi-render: warning: %s\n", note.c_str());
+    for (const gi::PassInfo& info : gi::passRegistry())
+        if (info.notes && gi::passActive(info, frame))
+            if (std::string note = info.notes(frame); !note.empty()) std::fprintf(stderr, "gi-render: warning: %s\n", note.c_str());
     gi::Renderer::checkBudget(frame, scene);  // refuse before any GL allocation (memory, prefilter time)
     // The references this run traces (those not cached) must fit the time budget too.
     gi::ReferenceSettings indirectSettings = preset.reference;
@@ -262,17 +264,18 @@ int run(int argc, char** argv) {
         passes.push_back({{"name", p.name}, {"gpuMs", p.gpuMs}, {"memoryBytes", p.memoryBytes}});
         total += p.gpuMs;
     }
-    // Each volume the technique holds (name, format, bytes): the per-volume memory.
+    // Each volume the passes hold (name, format, bytes): the per-volume memory.
     gi::json volumes = gi::json::array();
-    for (const auto& v : renderer.techniqueVolumes())
+    for (const auto& v : renderer.volumeMemory())
         volumes.push_back({{"name", v.name}, {"format", v.format}, {"bytes", v.bytes}});
     // The environment's prefilter, mip by mip (the Roughness Mips panel shows the same).
     gi::json environment = nullptr;
-    if (frame.environment.enabled && renderer.environment().ready()) {
+    const gi::Environment* env = renderer.activePass<gi::Environment>();
+    if (frame.environment.enabled && env && env->ready()) {
         gi::json mips = gi::json::array();
-        for (const auto& m : renderer.environment().mips())
+        for (const auto& m : env->mips())
             mips.push_back({{"roughness", m.roughness}, {"size", m.size}, {"samples", m.samples}, {"diskRadius", m.diskRadius}, {"ms", m.ms}});
-        environment = {{"source", renderer.environment().image().source}, {"loadMs", renderer.environment().loadMs()}, {"mips", mips}};
+        environment = {{"source", env->image().source}, {"loadMs", env->loadMs()}, {"mips", mips}};
     }
     gi::json stats = {{"input", input},
                       {"width", width},
@@ -296,7 +299,7 @@ int run(int argc, char** argv) {
             h = std::max(1, int(float(h) * scale));
             gi::writePNG(out / "views" / (v.name + ".png"), w, h, renderer.renderViewImage(v, w, h));
         }
-        if (frame.technique == gi::TechniqueKind::VCT) {
+        if (frame.technique == "vct") {
             // The voxels from the camera (the finest level holding its target): albedo, and the radiance the cones trace.
             gi::VoxelView voxels;
             gi::VoxelViewParams vp;

@@ -10,6 +10,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <fstream>
+#include <set>
 
 namespace gi {
 namespace {
@@ -180,15 +181,27 @@ TEST_F(GL, EveryPassIsTimedAndReportsMemory) {
     r.render(frameSettings(p, scene, kSize, kSize));
     r.timer().resolve(true);
     std::vector<std::string> names;
+    double total = 0.0;
+    size_t gbuffer = 0, lighting = 0;
     for (const auto& s : r.passStats()) {
         names.push_back(s.name);
-        EXPECT_GE(s.gpuMs, 0.0);
+        total += s.gpuMs;
+        if (s.name == "gbuffer") gbuffer = s.memoryBytes;
+        if (s.name == "lighting") lighting = s.memoryBytes;
     }
     EXPECT_EQ(names, (std::vector<std::string>{"shadows", "gbuffer", "indirect", "ssao", "lighting", "tonemap"}));
+    EXPECT_GT(total, 0.0) << "a frame that took no time was not timed";
+    // The G-buffer's five targets (RGBA8, RGBA16F, RGBA8, RGBA16F, depth 32F) and the HDR image.
+    EXPECT_EQ(gbuffer, size_t(kSize) * kSize * (4 + 8 + 4 + 8 + 4));
+    EXPECT_EQ(lighting, size_t(kSize) * kSize * 8);
     EXPECT_GT(r.memoryBytes(), size_t(kSize) * kSize * 40);
+    // Views of buffers that hold a picture show one: more than one colour, not all black.
     for (const auto& v : r.debugViews()) {
+        if (v.name != "final" && v.name != "albedo" && v.name != "normal" && v.name != "depth" && v.name != "hdr") continue;
         auto img = r.renderViewImage(v, 64, 64);
-        EXPECT_EQ(img.size(), 64u * 64u * 4u) << v.name;
+        std::set<uint32_t> colours;
+        for (size_t i = 0; i < img.size(); i += 4) colours.insert(uint32_t(img[i]) << 16 | uint32_t(img[i + 1]) << 8 | img[i + 2]);
+        EXPECT_GT(colours.size(), 4u) << v.name << " shows a flat image";
     }
 }
 

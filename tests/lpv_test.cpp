@@ -134,7 +134,7 @@ TEST(LPVCascades, FitSnapAndNest) {
 TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
     Scene scene = test::twoRooms();
     Preset p;
-    p.header.technique = TechniqueKind::LPV;
+    p.header.technique.name = "lpv";
     p.lpv.gridResolution = 16;
     p.lpv.propagationSteps = 16;
     FrameSettings fs = frameSettings(p, scene, 96, 64);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace gi {
@@ -13,9 +14,25 @@ namespace {
 template <class S>
 class SettingsTest : public ::testing::Test {};
 
-using AllSettings = ::testing::Types<PresetHeader, CameraSettings, LightSettings, RenderSettings, ToneMapSettings,
-                                     ReferenceSettings, QualitySettings, LPVSettings, VCTSettings, SSAOSettings>;
+// The preset's own sections, then every frame section from the one section list, so a new
+// technique's settings are covered with no edit here (SettingsList checks nothing is missed).
+#define GI_SECTION_TYPE(Type, name) , Type
+using AllSettings = ::testing::Types<PresetHeader, LightSettings, CameraSettings, ReferenceSettings,
+                                     QualitySettings GI_FRAME_SECTIONS(GI_SECTION_TYPE)>;
+#undef GI_SECTION_TYPE
 TYPED_TEST_SUITE(SettingsTest, AllSettings);
+
+TEST(SettingsList, TheTypedTestsCoverEverySectionOfAPreset) {
+    std::vector<std::string> sections;
+    Preset().forEachSection([&](const auto& s) { sections.emplace_back(std::decay_t<decltype(s)>::kSection); });
+    std::vector<std::string> covered;
+    [&]<class... S>(::testing::Types<S...>) { (covered.emplace_back(S::kSection), ...); }(AllSettings{});
+    for (const std::string& s : sections)
+        EXPECT_NE(std::find(covered.begin(), covered.end(), s), covered.end()) << "section " << s << " is not tested";
+    EXPECT_EQ(covered.size(), sections.size() + 2) << "the header and a light besides the sections";
+    for (const char* s : {"volumetric", "environment", "lpv", "vct", "ssao"})
+        EXPECT_NE(std::find(covered.begin(), covered.end(), s), covered.end()) << s;
+}
 
 // A JSON value of the wrong type for a field of type T.
 template <class T>

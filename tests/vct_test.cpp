@@ -130,7 +130,7 @@ class VCTGL : public test::GLTest {};
 
 FrameSettings cornellFrame(const Scene& scene, int res) {
     Preset p;
-    p.header.technique = TechniqueKind::VCT;
+    p.header.technique.name = "vct";
     p.vct.gridResolution = res;
     return frameSettings(p, scene, 64, 48);
 }
@@ -324,7 +324,7 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
     b.quad(panel, {-side / 2, height, -side / 2}, {side, 0, 0}, {0, 0, side});
     scene.finalize();
     Preset p;
-    p.header.technique = TechniqueKind::VCT;
+    p.header.technique.name = "vct";
     p.vct.gridResolution = 64;
     p.vct.specularCone = false;
     p.vct.traceScale = 1.0f;
@@ -362,7 +362,7 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
 TEST_F(VCTGL, TwoRoomLeak) {
     Scene scene = test::twoRooms();
     Preset p;
-    p.header.technique = TechniqueKind::VCT;
+    p.header.technique.name = "vct";
     p.vct.gridResolution = 64;
     p.vct.specularCone = false;
     FrameSettings fs = frameSettings(p, scene, 96, 64);
@@ -386,7 +386,7 @@ TEST_F(VCTGL, TwoRoomLeak) {
 TEST(VCTBudget, HugeGridsAreRefusedBeforeAllocation) {
     Scene scene = makeBuiltinScene("cornell");
     Preset p;
-    p.header.technique = TechniqueKind::VCT;
+    p.header.technique.name = "vct";
     p.vct.gridResolution = 256;
     p.vct.mode = VCTMode::Clipmap;
     p.vct.levelCount = 6;

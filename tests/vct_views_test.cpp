@@ -35,7 +35,7 @@ FrameSettings boxFrame(VCTMode mode) {
     LightSettings sun;
     sun.direction = {0.2f, -0.8f, -0.6f};  // lights the box's top and front
     fs.lights = {sun};
-    fs.technique = TechniqueKind::VCT;
+    fs.technique = "vct";
     fs.vct.gridResolution = 32;
     fs.vct.mode = mode;
     fs.vct.levelCount = 2;

@@ -1,6 +1,7 @@
 #include "ui/editor.h"
 
 #include "common/shared.h"
+#include "gi/envmap/environment.h"
 #include "gi/lpv/lpv.h"
 #include "gi/scene/camera.h"
 
@@ -123,11 +124,7 @@ void Editor::frame(int width, int height, float dt) {
     CameraSettings camera = mPreset.camera;
     if (camera.sceneCamera >= 0 && camera.sceneCamera < int(mScene.cameras.size())) {
         // Flying away from one of the file's cameras starts from it and leaves it.
-        const CameraSettings& c = mScene.cameras[camera.sceneCamera];
-        camera.eye = c.eye;
-        camera.target = c.target;
-        camera.up = c.up;
-        camera.fovY = c.fovY;
+        takeSceneCamera(camera, mScene.cameras[camera.sceneCamera]);
         camera.sceneCamera = -1;
     }
     float radius = mScene.bounds.valid() ? 0.5f * glm::length(mScene.bounds.extent()) : 1.0f;
@@ -202,7 +199,7 @@ void Editor::renderViewport(int width, int height) {
         glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
         glBlitNamedFramebuffer(mOutputFBO.id(), 0, 0, 0, mRenderer.width(), mRenderer.height(), 0, 0, width, height,
                                GL_COLOR_BUFFER_BIT, GL_LINEAR);
-        if (mVoxelDisplay == VoxelDisplay::Viewport && fs.technique == TechniqueKind::VCT) {
+        if (mVoxelDisplay == VoxelDisplay::Viewport && fs.technique == "vct") {
             std::vector<VoxelGridView> grids = voxelGrids(fs);
             mVoxelView.render(grids, voxelParams(fs, grids, float(width) / float(height)), 0, width, height);
         }
@@ -273,7 +270,7 @@ void Editor::scanFiles() {
 }
 
 void Editor::drawCascadeOverlay() {
-    if (!mShowCascades || mPreset.header.technique != TechniqueKind::LPV || !mScene.bounds.valid() || mWidth <= 0) return;
+    if (!mShowCascades || mPreset.header.technique != "lpv" || !mScene.bounds.valid() || mWidth <= 0) return;
     FrameSettings fs = frameSettings(mPreset, mScene, mWidth, mHeight);
     glm::mat4 viewProj = projectionMatrix(fs.camera, float(mWidth) / float(mHeight)) * viewMatrix(fs.camera);
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -309,7 +306,7 @@ VoxelViewParams Editor::voxelParams(const FrameSettings& fs, const std::vector<V
 }
 
 void Editor::readConePick() {
-    if (!mShowCones || mPreset.header.technique != TechniqueKind::VCT || mRenderer.width() <= 0) return;
+    if (!mShowCones || mPreset.header.technique != "vct" || mRenderer.width() <= 0) return;
     if (!mPickPending && mPickGeneration == mSceneGeneration) return;
     mPickPending = false;
     mPickGeneration = mSceneGeneration;
@@ -321,7 +318,7 @@ void Editor::readConePick() {
 }
 
 void Editor::drawConeOverlay() {
-    if (!mShowCones || mPreset.header.technique != TechniqueKind::VCT || !mPick.valid || !mScene.bounds.valid() || mWidth <= 0)
+    if (!mShowCones || mPreset.header.technique != "vct" || !mPick.valid || !mScene.bounds.valid() || mWidth <= 0)
         return;
     FrameSettings fs = frameSettings(mPreset, mScene, mWidth, mHeight);
     glm::mat4 viewProj = projectionMatrix(fs.camera, float(mWidth) / float(mHeight)) * viewMatrix(fs.camera);
@@ -391,7 +388,7 @@ void Editor::vctPanel() {
 }
 
 void Editor::voxelWindow() {
-    if (mVoxelDisplay != VoxelDisplay::Window || mPreset.header.technique != TechniqueKind::VCT || mWidth <= 0) return;
+    if (mVoxelDisplay != VoxelDisplay::Window || mPreset.header.technique != "vct" || mWidth <= 0) return;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(kLeftWidth + 2 * kMargin, display.y - 300.0f - kMargin), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(400.0f, 300.0f), ImGuiCond_FirstUseEver);
@@ -430,7 +427,9 @@ uint8_t Editor::roughnessMipsPanel() {
     }
     if (!open) return 0;
     EnvironmentSettings& s = mPreset.environment;
-    const Environment& env = mRenderer.environment();
+    const Environment* envPass = mRenderer.activePass<Environment>();
+    GI_ASSERT(envPass, "the environment is an effect: the renderer always holds it");
+    const Environment& env = *envPass;
     // The change tag comes from the settings table, as for every other edit.
     Cost tableCost = Cost::Reallocate;
     s.visit([&](auto&, const FieldMeta& m) {
@@ -709,7 +708,7 @@ void Editor::drawPanels() {
     drawCascadeOverlay();
     const ImGuiIO& io = ImGui::GetIO();
     // A left click on the viewport (not on a panel) picks the pixel whose cone set is drawn.
-    if (mShowCones && mPreset.header.technique == TechniqueKind::VCT && !io.WantCaptureMouse &&
+    if (mShowCones && mPreset.header.technique == "vct" && !io.WantCaptureMouse &&
         ImGui::IsMouseClicked(ImGuiMouseButton_Left) && display.x > 0.0f && display.y > 0.0f) {
         mPickUV = glm::vec2(io.MousePos.x / display.x, 1.0f - io.MousePos.y / display.y);
         mPickPending = true;
@@ -734,7 +733,7 @@ void Editor::drawPanels() {
             using S = std::decay_t<decltype(section)>;
             // The active technique's settings are what is being tuned: open them too.
             bool open = S::kSection == "render" || S::kSection == "toneMap" ||
-                        (S::kSection == "vct" && mPreset.header.technique == TechniqueKind::VCT) ||
+                        (S::kSection == "vct" && mPreset.header.technique == "vct") ||
                         (S::kSection == "environment" && mOpenMips);
             if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
             cost |= drawSettings(section);

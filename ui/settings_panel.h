@@ -42,6 +42,23 @@ bool drawField(E& value, const FieldMeta& m) {
     return changed;
 }
 
+template <ChoiceString T>
+bool drawField(T& value, const FieldMeta& m) {
+    bool changed = false;
+    bool open = ImGui::BeginCombo(m.key, value.name.c_str());
+    fieldTooltip(m, false);
+    if (open) {
+        for (const std::string& name : T::choices()) {
+            if (ImGui::Selectable(name.c_str(), name == value.name) && name != value.name) {
+                value.name = name;
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
 // Draws every field of `s` and returns the OR of the Cost bits of the fields that changed.
 template <Settings S>
 uint8_t drawSettings(S& s) {

@@ -2,7 +2,6 @@
 
 #include "common/shared.h"
 #include "gi/preset/reflect.h"
-#include "gi/render/renderer.h"
 #include "gi/util/error.h"
 
 #include <algorithm>
@@ -118,22 +117,22 @@ size_t Environment::estimateBytes(const EnvironmentSettings& s) {
     return face * 4 / 3 * 2 + size_t(kIrradianceSize) * kIrradianceSize * 8 * 6 + size_t(kLUTSize) * kLUTSize * 4;
 }
 
-void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, const RenderSettings& render, const ProgressSink& progress) {
+void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, const RenderSettings& render, const ProgressSink& progress,
+                          uint8_t changes) {
     if (!s.enabled) {
-        if (!mKey.empty()) {
+        if (mBuilt || ready()) {
             for (gl::Texture* t : {&mLatLong, &mSource, &mPrefiltered, &mIrradiance}) *t = gl::Texture();
             mImage = EnvironmentImage();
             mMips.clear();
-            mKey.clear();
+            mBuilt = false;
         }
         return;
     }
     // Rebuilt when a setting the maps are built from changed (the table's Reallocate fields);
     // intensity, rotation and skybox apply at lookup.
-    std::string k = toJson(s, Cost::Reallocate).dump();
-    if (k == mKey) return;
+    if (mBuilt && !any(Cost(changes), Cost::Reallocate)) return;
     checkTimeBudget(s, render.timeBudgetSeconds);  // before anything is loaded or allocated
-    mKey.clear();
+    mBuilt = false;
     auto pass = timer.scope("environment.prefilter");
     double t0 = nowMs();
     if (mImage.source != s.file) mImage = loadEnvironment(s.file, {}, render.memoryBudgetBytes());
@@ -231,7 +230,43 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
     glProgramUniform3fv(mPrefilterProg.id(), mPrefilterProg.location("uSH[0]"), 9, &sh[0].x);
     dispatch(mIrradiance, 0, kIrradianceSize, 2, 1.0f, 0.0f, 1, -1);
     glBindSampler(0, 0);
-    mKey = k;
+    mBuilt = true;
+}
+
+void Environment::prepare(FrameContext& ctx) {
+    const FrameSettings& fs = ctx.settings;
+    prepare(fs.environment, ctx.timer, fs.render, ctx.progress, ctx.changes);
+    ctx.brdfLUT = brdfLUT();
+}
+
+void Environment::indirect(FrameContext& ctx) {
+    // With technique none the environment is the indirect light; a technique's own wins.
+    const FrameSettings& fs = ctx.settings;
+    if (ctx.indirectWritten || fs.technique != TechniqueChoice::kNone || !fs.environment.enabled || !ready()) return;
+    shade(fs.environment, ctx.normal, ctx.material, ctx.depth, ctx.indirect, ctx.indirectSpecular, ctx.width, ctx.height,
+          ctx.invViewProj, fs.camera.eye, ctx.timer);
+    ctx.indirectWritten = true;
+}
+
+void Environment::afterLighting(FrameContext& ctx) {
+    const FrameSettings& fs = ctx.settings;
+    if (fs.environment.enabled && fs.environment.skybox && ready())
+        sky(fs.environment, ctx.depth, ctx.hdr, ctx.width, ctx.height, ctx.invViewProj, fs.camera.eye, ctx.timer);
+}
+
+std::vector<std::string> Environment::passNames(const FrameSettings& fs) const {
+    const EnvironmentSettings& s = fs.environment;
+    if (!s.enabled) return {};
+    std::vector<std::string> names{"environment.prefilter"};  // on the frame that builds the maps
+    if (fs.technique == TechniqueChoice::kNone) names.push_back("environment.shade");
+    if (s.skybox) names.push_back("environment.sky");
+    return names;
+}
+
+std::unique_ptr<Pass> EnvironmentSettings::createPass() { return std::make_unique<Environment>(); }
+size_t EnvironmentSettings::estimateBytes(const FrameSettings& fs) { return Environment::estimateBytes(fs.environment); }
+void EnvironmentSettings::checkTime(const FrameSettings& fs) {
+    if (fs.environment.enabled) Environment::checkTimeBudget(fs.environment, fs.render.timeBudgetSeconds);
 }
 
 void Environment::shade(const EnvironmentSettings& s, GLuint normal, GLuint material, GLuint depth, GLuint indirect, GLuint specular,
@@ -305,7 +340,7 @@ bool Environment::reloadShaders(std::string& log) {
         }
     if (ok) {
         computeLUT();
-        mKey.clear();  // rebuild the maps with the new programs
+        mBuilt = false;  // rebuild the maps with the new programs
     }
     return ok;
 }

@@ -42,6 +42,7 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
 #include "gi/util/progress.h"
 
@@ -52,19 +53,24 @@
 
 namespace gi {
 
-struct DebugView;
-
-class Environment {
+class Environment final : public Pass {
 public:
     Environment();  // compiles the programs and computes the BRDF table; throws gi::Error
 
-    // Loads and prefilters when the file or a prefilter setting changed (or `presetFolder`
-    // resolution differs); does nothing when disabled. Throws gi::Error naming the file or key:
-    // a map past render.memoryBudgetMB, a prefilter estimated past render.timeBudgetSeconds
-    // (both refused before anything is allocated). `progress` hears after each band of a mip.
+    // Loads and prefilters when `changes` holds Cost::Reallocate (a setting the maps are built
+    // from changed: the file, the prefilter's settings) or no maps are built; releases them when
+    // disabled. Throws gi::Error naming the file or key: a map past render.memoryBudgetMB, a
+    // prefilter estimated past render.timeBudgetSeconds (both refused before anything is
+    // allocated). `progress` hears after each band of a mip.
     void prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, const RenderSettings& render = {},
-                 const ProgressSink& progress = {});
+                 const ProgressSink& progress = {}, uint8_t changes = 0xff);
     bool ready() const { return mPrefiltered.id() != 0; }
+
+    // The pass's stages: the maps and the BRDF table; with technique none, the indirect terms
+    // from the maps; the sky behind the lit image.
+    void prepare(FrameContext& ctx) override;
+    void indirect(FrameContext& ctx) override;
+    void afterLighting(FrameContext& ctx) override;
 
     // technique none: fills `indirect` (E / pi) and `specular` from the maps.
     void shade(const EnvironmentSettings& s, GLuint normal, GLuint material, GLuint depth, GLuint indirect, GLuint specular,
@@ -88,7 +94,7 @@ public:
     const std::vector<MipInfo>& mips() const { return mMips; }
     double loadMs() const { return mLoadMs; }
 
-    size_t memoryBytes() const { return mSource.bytes() + mPrefiltered.bytes() + mIrradiance.bytes() + mLUT.bytes() + mLatLong.bytes(); }
+    size_t memoryBytes() const override { return mSource.bytes() + mPrefiltered.bytes() + mIrradiance.bytes() + mLUT.bytes() + mLatLong.bytes(); }
     static size_t estimateBytes(const EnvironmentSettings& s);
     // The prefilter's work: samples over every texel of the mips of roughness above 0, and the
     // time they take on llvmpipe (kPrefilterSamplesPerSecond in environment.cpp; 0 when disabled).
@@ -96,8 +102,11 @@ public:
     static double estimateSeconds(const EnvironmentSettings& s);
     // Throws gi::Error naming render.timeBudgetSeconds, the estimate and the settings to lower.
     static void checkTimeBudget(const EnvironmentSettings& s, double budgetSeconds);
-    std::vector<DebugView> debugViews() const;
-    bool reloadShaders(std::string& log);
+    // Everything it holds counts under the prefilter.
+    size_t passMemory(const std::string& pass) const override { return pass == "environment.prefilter" ? memoryBytes() : 0; }
+    std::vector<std::string> passNames(const FrameSettings& fs) const override;
+    std::vector<DebugView> debugViews() const override;
+    bool reloadShaders(std::string& log) override;
 
     // The chain the settings give: its mip count (one per mipRoughness entry, at most the cube's
     // halvings and 32), and the mip each table entry feeds, -1 for an entry skipped because the
@@ -117,7 +126,7 @@ private:
     EnvironmentImage mImage;
     std::vector<MipInfo> mMips;
     double mLoadMs = 0.0;
-    std::string mKey;  // what the current maps were built from
+    bool mBuilt = false;  // the maps match the settings of the last prepare that completed
 
     void computeLUT();
 };

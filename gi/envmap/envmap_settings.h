@@ -20,6 +20,11 @@ struct EnumNames<PrefilterDistribution> {
 
 struct EnvironmentSettings {
     static constexpr std::string_view kSection = "environment";
+    // The pass these settings drive, registered by the section list (gi/preset/settings.h).
+    static constexpr PassRole kRole = PassRole::Effect;
+    static std::unique_ptr<Pass> createPass();
+    static size_t estimateBytes(const FrameSettings& fs);
+    static void checkTime(const FrameSettings& fs);
     bool enabled = false;          // light the scene from the environment map and draw it as the sky
     // An equirectangular (latlong) .hdr/.exr/.png, a six-face cube map as a pattern with "{face}"
     // (replaced by px nx py ny pz nz), or a built-in: "builtin:sky" (a gradient sky with a sun) or

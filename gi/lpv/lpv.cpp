@@ -1,7 +1,7 @@
 #include "gi/lpv/lpv.h"
 
 #include "common/shared.h"
-#include "gi/render/renderer.h"
+#include "gi/render/gpu_scene.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 
@@ -92,13 +92,13 @@ size_t LPV::estimateBytes(const FrameSettings& fs) {
     return perCascade * size_t(s.cascadeCount) + rsm;
 }
 
-void LPV::allocate(const FrameSettings& fs) {
+void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
+    // The volumes and RSMs follow the Reallocate fields (grid, cascades, RSM size, the lights).
+    if (!any(Cost(changes), Cost::Reallocate)) return;
     const LPVSettings& s = fs.lpv;
     size_t rsmCount = 0;
     for (const auto& l : fs.lights) rsmCount += hasRSM(l) ? size_t(s.cascadeCount) : 0;
-    bool volumes = s.gridResolution != mResolution || int(mCascadeData.size()) != s.cascadeCount;
-    bool rsms = s.rsmResolution != mRSMResolution || rsmCount != mRSMs.size();
-    if (volumes) {
+    {
         mResolution = s.gridResolution;
         mCascadeData.clear();
         mVolumeBytes = mGeometryBytes = 0;
@@ -123,7 +123,7 @@ void LPV::allocate(const FrameSettings& fs) {
             mCascadeData.push_back(std::move(c));
         }
     }
-    if (rsms) {
+    {
         mRSMResolution = s.rsmResolution;
         mRSMs.clear();
         mRSMBytes = 0;
@@ -148,8 +148,8 @@ void LPV::allocate(const FrameSettings& fs) {
     }
 }
 
-void LPV::execute(const FrameContext& ctx) {
-    allocate(ctx.settings);
+void LPV::indirect(FrameContext& ctx) {
+    allocate(ctx.settings, ctx.changes);
     const Bounds& b = ctx.scene.bounds();
     mBoxes = lpvCascades(ctx.settings.lpv, b.min, b.max, ctx.settings.camera.eye);
     renderRSMs(ctx);
@@ -157,6 +157,7 @@ void LPV::execute(const FrameContext& ctx) {
     buildGeometry(ctx);
     propagate(ctx);
     shade(ctx);
+    ctx.indirectWritten = true;
 }
 
 void LPV::renderRSMs(const FrameContext& ctx) {
@@ -427,6 +428,14 @@ size_t LPV::passMemory(const std::string& pass) const {
 }
 
 size_t LPV::memoryBytes() const { return mRSMBytes + mVolumeBytes + mGeometryBytes; }
+
+std::vector<std::string> LPV::passNames(const FrameSettings&) const {
+    return {"lpv.rsm", "lpv.inject", "lpv.geometry", "lpv.propagate", "lpv.shade"};
+}
+
+std::unique_ptr<Pass> LPVSettings::createPass() { return std::make_unique<LPV>(); }
+size_t LPVSettings::estimateBytes(const FrameSettings& fs) { return LPV::estimateBytes(fs); }
+std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLights(fs.lights); }
 
 bool LPV::reloadShaders(std::string& log) {
     bool ok = true;

@@ -45,7 +45,7 @@
 
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
-#include "gi/render/technique.h"
+#include "gi/render/pass.h"
 
 #include <glm/glm.hpp>
 
@@ -65,24 +65,25 @@ std::string lpvIgnoredLights(const std::vector<LightSettings>& lights);
 std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
                                     const glm::vec3& camera);
 
-class LPV : public Technique {
+class LPV : public Pass {
 public:
     LPV();
     ~LPV() override;
 
     static size_t estimateBytes(const FrameSettings& fs);
 
-    void execute(const FrameContext& ctx) override;
+    void indirect(FrameContext& ctx) override;
     std::vector<DebugView> debugViews() const override;
     size_t passMemory(const std::string& pass) const override;
     size_t memoryBytes() const override;
+    std::vector<std::string> passNames(const FrameSettings& fs) const override;
     bool reloadShaders(std::string& log) override;
 
     const std::vector<CascadeBox>& cascades() const { return mBoxes; }
 
     // One propagation step on SSBOs of 12 floats per cell (RGB x 4 SH coefficients): gathers
     // `src` into `dst` and adds `dst` to `accum`; `transmit` (8 floats per cell, from the geometry
-    // volume) is read when `blocking`. execute() runs it; tests call it directly.
+    // volume) is read when `blocking`. indirect() runs it; tests call it directly.
     void propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, int resolution, bool blocking);
 
 private:
@@ -108,7 +109,7 @@ private:
     size_t mRSMBytes = 0, mVolumeBytes = 0, mGeometryBytes = 0;
     gl::Sampler mLinear;
 
-    void allocate(const FrameSettings& fs);
+    void allocate(const FrameSettings& fs, uint8_t changes);
     void renderRSMs(const FrameContext& ctx);
     void inject(const FrameContext& ctx);
     void buildGeometry(const FrameContext& ctx);

@@ -7,6 +7,11 @@ namespace gi {
 
 struct LPVSettings {
     static constexpr std::string_view kSection = "lpv";
+    // The pass these settings drive, registered by the section list (gi/preset/settings.h).
+    static constexpr PassRole kRole = PassRole::Technique;
+    static std::unique_ptr<Pass> createPass();
+    static size_t estimateBytes(const FrameSettings& fs);
+    static std::string notes(const FrameSettings& fs);
     int gridResolution = 32;      // cells per side of every cascade
     int cascadeCount = 1;         // nested grids, each twice the size of the previous
     float cascadeExtent = 0.0f;   // world size of the finest cascade; 0 fits the scene (see lpv.h)

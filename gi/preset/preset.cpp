@@ -2,6 +2,7 @@
 
 #include "gi/envmap/envmap_image.h"
 
+#include "gi/scene/camera.h"
 #include "gi/scene/scene.h"
 #include "gi/util/paths.h"
 
@@ -193,15 +194,7 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
         if (p.camera.sceneCamera >= int(scene.cameras.size()))
             throw Error("key 'camera.sceneCamera': camera " + std::to_string(p.camera.sceneCamera) + " does not exist (scene '" +
                         scene.name + "' has " + std::to_string(scene.cameras.size()) + ")");
-        const CameraSettings& c = scene.cameras[p.camera.sceneCamera];
-        fs.camera.eye = c.eye;
-        fs.camera.target = c.target;
-        fs.camera.up = c.up;
-        fs.camera.fovY = c.fovY;
-        // The file's (or the framing camera's) clip planes: a scene in millimetres lies past the
-        // preset's default far plane and would render black.
-        fs.camera.near = c.near;
-        fs.camera.far = c.far;
+        takeSceneCamera(fs.camera, scene.cameras[p.camera.sceneCamera]);
     }
     fs.lights = p.lightsFromScene ? scene.lights : p.lights;
     if (p.lightsFromScene && scene.lights.empty()) {
@@ -210,14 +203,8 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
         sun.direction = {-0.4f, -0.8f, -0.45f};
         fs.lights.push_back(sun);
     }
-    fs.render = p.render;
-    fs.toneMap = p.toneMap;
-    fs.technique = p.header.technique;
-    fs.lpv = p.lpv;
-    fs.vct = p.vct;
-    fs.ssao = p.ssao;
-    fs.volumetric = p.volumetric;
-    fs.environment = p.environment;
+    static_cast<FrameSections&>(fs) = p;
+    fs.technique = p.header.technique.name;
     // Found once here, so the raster and the path tracer load the same file whatever the folder.
     // A name not found stays as it is: loading it then fails with the error naming it.
     if (fs.environment.enabled) {

@@ -16,7 +16,7 @@ namespace gi {
 struct PresetHeader {
     static constexpr std::string_view kSection = "";
     std::string scene = "cornell";           // built-in scene name or glTF path (search path applies)
-    TechniqueKind technique = TechniqueKind::None;  // which technique fills the indirect term
+    TechniqueChoice technique;               // which technique fills the indirect term ("none" or a registered one)
 
     template <class V>
     void visit(V&& v) {
@@ -39,19 +39,14 @@ struct QualitySettings {
     }
 };
 
-struct Preset {
+// The frame's sections (render, toneMap and every pass's, gi/render/render_settings.h) come
+// from FrameSections, so a new technique's section is a preset section with no edit here.
+struct Preset : FrameSections {
     static constexpr int kSchemaVersion = 1;
     PresetHeader header;
     CameraSettings camera;
     std::vector<LightSettings> lights;  // used when lightsFromScene is false
     bool lightsFromScene = true;        // no "lights" key: take the scene's own lights
-    RenderSettings render;
-    ToneMapSettings toneMap;
-    LPVSettings lpv;
-    VCTSettings vct;
-    SSAOSettings ssao;
-    VolumetricSettings volumetric;
-    EnvironmentSettings environment;
     ReferenceSettings reference;
     QualitySettings quality;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)
@@ -60,13 +55,7 @@ struct Preset {
     template <class F>
     void forEachSection(F&& f) {
         f(camera);
-        f(render);
-        f(toneMap);
-        f(lpv);
-        f(vct);
-        f(ssao);
-        f(volumetric);
-        f(environment);
+        FrameSections::forEachSection(f);
         f(reference);
         f(quality);
     }

@@ -124,6 +124,21 @@ void read(E& e, const json& j, const FieldMeta&, const std::string& c, const std
     throw Error(where(c, k) + ": expected one of the names, got " + typeName(j));
 }
 
+template <ChoiceString T>
+void read(T& t, const json& j, const FieldMeta&, const std::string& c, const std::string& k) {
+    std::vector<std::string> names = T::choices();
+    if (!j.is_string()) throw Error(where(c, k) + ": expected one of the names, got " + typeName(j));
+    std::string s = j.get<std::string>();
+    for (const auto& n : names)
+        if (s == n) {
+            t.name = s;
+            return;
+        }
+    std::string all;
+    for (auto& n : names) all += (all.empty() ? "" : ", ") + n;
+    throw Error(where(c, k) + ": unknown value '" + s + "' (valid: " + all + ")");
+}
+
 inline json write(float f) { return f; }
 inline json write(int i) { return i; }
 inline json write(bool b) { return b; }
@@ -133,6 +148,10 @@ inline json write(const std::vector<float>& v) { return json(v); }
 template <ReflectedEnum E>
 json write(E e) {
     return enumName(e);
+}
+template <ChoiceString T>
+json write(const T& t) {
+    return t.name;
 }
 
 template <class T> const char* typeOf() {
@@ -240,6 +259,7 @@ void describe(std::vector<SettingInfo>& out, const std::string& prefix) {
         }
         if constexpr (ReflectedEnum<T>)
             for (const auto& [v, name] : EnumNames<T>::values) info.choices.emplace_back(name);
+        if constexpr (ChoiceString<T>) info.choices = T::choices();
         out.push_back(std::move(info));
     });
 }

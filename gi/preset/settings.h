@@ -6,11 +6,14 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <concepts>
+#include <memory>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace gi {
 
@@ -53,7 +56,35 @@ const char* enumName(E value) {
     return "?";
 }
 
+// A string chosen from a list known at run time (the registered techniques): T has `name` and
+// a static choices().
+template <class T>
+concept ChoiceString = requires(T t) {
+    { T::choices() } -> std::convertible_to<std::vector<std::string>>;
+    { t.name } -> std::convertible_to<std::string>;
+};
+
 template <class S>
 concept Settings = requires(S s) { S::kSection; };
+
+// A settings section that drives a pass declares, besides kSection:
+//   static constexpr PassRole kRole;                     technique (chosen by the preset's
+//                                                        `technique` key) or effect (always present)
+//   static std::unique_ptr<Pass> createPass();           defined beside the pass
+//   static size_t estimateBytes(const FrameSettings&);   GPU bytes, known before allocation
+// and optionally
+//   static void checkTime(const FrameSettings&);         throws past render.timeBudgetSeconds
+//   static std::string notes(const FrameSettings&);      warnings for the user, "" when none
+// The section list (gi/render/render_settings.h) registers it (gi/render/pass.h).
+class Pass;
+struct FrameSettings;
+enum class PassRole { Technique, Effect };
+
+template <class S>
+concept PassSettings = Settings<S> && requires(const FrameSettings& fs) {
+    S::kRole;
+    S::createPass();
+    { S::estimateBytes(fs) } -> std::convertible_to<size_t>;
+};
 
 }  // namespace gi

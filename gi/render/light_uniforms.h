@@ -5,7 +5,7 @@
 #pragma once
 
 #include "gi/gl/shader.h"
-#include "gi/render/technique.h"
+#include "gi/render/pass.h"
 #include "gi/scene/scene_settings.h"
 
 namespace gi {

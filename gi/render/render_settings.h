@@ -64,26 +64,54 @@ struct ToneMapSettings {
 
 namespace gi {
 
-// The technique that fills the indirect term. Each names its settings section in the preset.
-enum class TechniqueKind { None, LPV, VCT };
-template <>
-struct EnumNames<TechniqueKind> {
-    static constexpr std::array<std::pair<TechniqueKind, const char*>, 3> values{
-        {{TechniqueKind::None, "none"}, {TechniqueKind::LPV, "lpv"}, {TechniqueKind::VCT, "vct"}}};
+// The settings sections of a frame, each once: the preset holds them, the frame copies them, the
+// JSON, --set, --list-settings, the editor's panels and the generic settings test walk them. A
+// section whose struct declares createPass() (gi/preset/settings.h) registers a pass: the
+// renderer, the budget check and the previewers find the pass through this list
+// (gi/render/pass.h, passRegistry()), in this order, which is also the order the passes run in
+// each stage. Adding a technique is one line here (and its settings header above).
+#define GI_FRAME_SECTIONS(X)        \
+    X(RenderSettings, render)       \
+    X(ToneMapSettings, toneMap)     \
+    X(LPVSettings, lpv)             \
+    X(VCTSettings, vct)             \
+    X(SSAOSettings, ssao)           \
+    X(EnvironmentSettings, environment) \
+    X(VolumetricSettings, volumetric)
+
+struct FrameSections {
+#define GI_SECTION_MEMBER(Type, name)                                                   \
+    Type name;                                                                          \
+    static_assert(Type::kSection == #name, "a section's member is named as its key");
+    GI_FRAME_SECTIONS(GI_SECTION_MEMBER)
+#undef GI_SECTION_MEMBER
+
+    template <class F>
+    void forEachSection(F&& f) {
+#define GI_SECTION_CALL(Type, name) f(name);
+        GI_FRAME_SECTIONS(GI_SECTION_CALL)
+#undef GI_SECTION_CALL
+    }
+    template <class F>
+    void forEachSection(F&& f) const {
+        const_cast<FrameSections&>(*this).forEachSection([&](const auto& s) { f(s); });
+    }
+};
+
+// The technique that fills the indirect term: "none" or the section name of a registered
+// technique (a section whose kRole is PassRole::Technique). Choices come from the section list.
+struct TechniqueChoice {
+    static constexpr std::string_view kNone = "none";
+    std::string name{kNone};
+    static std::vector<std::string> choices();
+    bool operator==(std::string_view n) const { return name == n; }
 };
 
 // Everything one frame needs besides the scene: the preset resolved against the scene.
-struct FrameSettings {
+struct FrameSettings : FrameSections {
     CameraSettings camera;
     std::vector<LightSettings> lights;
-    RenderSettings render;
-    ToneMapSettings toneMap;
-    TechniqueKind technique = TechniqueKind::None;
-    LPVSettings lpv;
-    VCTSettings vct;
-    SSAOSettings ssao;
-    VolumetricSettings volumetric;
-    EnvironmentSettings environment;
+    std::string technique{TechniqueChoice::kNone};
     int width = 640;
     int height = 360;
 };

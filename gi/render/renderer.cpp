@@ -1,62 +1,50 @@
 #include "gi/render/renderer.h"
 
-#include "gi/lpv/lpv.h"
-#include "gi/vct/vct.h"
-
 #include "common/shared.h"
+#include "gi/preset/reflect.h"
 #include "gi/util/error.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace gi {
 
 using namespace shared;
 
-// ---------------------------------------------------------------------------------------------
-
-GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.materials), mBounds(scene.bounds) {
-    static uint64_t sCount = 0;
-    mId = ++sCount;
-    mVertices = gl::createBuffer(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
-    mIndices = gl::createBuffer(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
-    mBytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
-    GLuint vao = 0;
-    glCreateVertexArrays(1, &vao);
-    mVAO = gl::VertexArray(vao);
-    glVertexArrayVertexBuffer(vao, 0, mVertices.id(), 0, sizeof(Vertex));
-    glVertexArrayElementBuffer(vao, mIndices.id());
-    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv)};
-    const GLint sizes[3] = {3, 3, 2};
-    for (GLuint a = 0; a < 3; ++a) {
-        glEnableVertexArrayAttrib(vao, a);
-        glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
-        glVertexArrayAttribBinding(vao, a, 0);
-    }
-    for (const Texture& t : scene.textures) {
-        int levels = 1 + int(std::floor(std::log2(std::max(t.width, t.height))));
-        gl::Texture tex = gl::Texture::create2D(GL_SRGB8_ALPHA8, t.width, t.height, levels);
-        glTextureSubImage2D(tex.id(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
-        glGenerateTextureMipmap(tex.id());
-        mBytes += tex.bytes();
-        mTextures.push_back(std::move(tex));
-    }
-}
-
-size_t GPUScene::estimateBytes(const Scene& scene) {
-    size_t bytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
-    for (const Texture& t : scene.textures) bytes += t.rgba.size() * 4 / 3;  // the mip chain adds a third
-    return bytes;
-}
-
-// ---------------------------------------------------------------------------------------------
-
 namespace {
 
 gl::Sampler makeSampler(GLenum minFilter, GLenum magFilter, GLenum wrap, bool compare = false) {
     return gl::createSampler({minFilter, magFilter, wrap, 0, 0, compare});
 }
+
+// Technique none: the indirect term is the constant ambient radiance (render.ambient), unless an
+// effect (the environment) filled it already.
+class AmbientPass final : public Pass {
+public:
+    void indirect(FrameContext& ctx) override {
+        if (ctx.indirectWritten) return;
+        auto pass = ctx.timer.scope("indirect");
+        const glm::vec4 ambient(ctx.settings.render.ambient, 1.0f);
+        glClearTexImage(ctx.indirect, 0, GL_RGBA, GL_FLOAT, &ambient[0]);
+        ctx.indirectWritten = true;
+    }
+    size_t passMemory(const std::string&) const override { return 0; }
+    size_t memoryBytes() const override { return 0; }
+    std::vector<std::string> passNames(const FrameSettings&) const override { return {"indirect"}; }
+    bool reloadShaders(std::string&) override { return true; }
+};
+
+// The lights as the passes see a change to them: a light added, removed or changed.
+uint8_t lightChanges(const FrameSettings& before, const FrameSettings& after) {
+    if (before.lights.size() != after.lights.size()) return uint8_t(Cost::Reallocate);
+    uint8_t c = 0;
+    for (size_t i = 0; i < after.lights.size(); ++i) c |= diff(before.lights[i], after.lights[i]);
+    return c;
+}
+
+constexpr uint8_t kEverything = 0xff;
 
 constexpr size_t kGBufferBytesPerPixel = 4 + 8 + 4 + 8 + 4;  // albedo, normal, material, emissive, depth
 constexpr size_t kTargetBytesPerPixel = 8 + 8 + 8 + 4;        // indirect, indirect specular, HDR, LDR
@@ -73,6 +61,9 @@ Renderer::Renderer()
       mLightProg(gl::fullscreenProgram("light", "render/light.frag")),
       mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")) {
+    // Effects live as long as the renderer; the technique is made when it is chosen.
+    for (const PassInfo& info : passRegistry())
+        if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mEmptyVAO = gl::VertexArray(vao);
@@ -97,9 +88,8 @@ void Renderer::setScene(const Scene& scene) { mScene = std::make_unique<GPUScene
 
 namespace {
 size_t techniqueBytes(const FrameSettings& fs) {
-    if (fs.technique == TechniqueKind::LPV) return LPV::estimateBytes(fs);
-    if (fs.technique == TechniqueKind::VCT) return VCT::estimateBytes(fs);
-    return 0;
+    const PassInfo* info = findPass(fs.technique);
+    return info ? info->estimateBytes(fs) : 0;
 }
 }  // namespace
 
@@ -109,18 +99,17 @@ size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
     size_t face = size_t(fs.render.shadowMapSize) * size_t(fs.render.shadowMapSize) * 4;
     for (const auto& l : fs.lights)
         if (l.castShadows) bytes += face * (l.type == LightType::Point ? 6 : 1);
-    bytes += techniqueBytes(fs);
-    bytes += SSAO::estimateBytes(fs.width, fs.height);
-    bytes += Volumetric::estimateBytes(fs);
-    bytes += Environment::estimateBytes(fs.environment);
+    for (const PassInfo& info : passRegistry())
+        if (passActive(info, fs)) bytes += info.estimateBytes(fs);
     return bytes;
 }
 
 void Renderer::checkBudget(const FrameSettings& fs, size_t sceneBytes) {
     checkMemoryBudget(fs, sceneBytes);
-    // The prefilter runs only when the environment's maps change; Environment::prepare checks
-    // again then, so a chain already built is never refused here by a frame.
-    if (fs.environment.enabled) Environment::checkTimeBudget(fs.environment, fs.render.timeBudgetSeconds);
+    // Long work (the environment's prefilter) runs only when its inputs change and is checked
+    // again then, so work already done is never refused here by a frame.
+    for (const PassInfo& info : passRegistry())
+        if (info.checkTime && passActive(info, fs)) info.checkTime(fs);
 }
 
 void Renderer::checkMemoryBudget(const FrameSettings& fs, size_t sceneBytes) {
@@ -134,7 +123,7 @@ void Renderer::checkMemoryBudget(const FrameSettings& fs, size_t sceneBytes) {
         std::snprintf(buf, sizeof buf,
                       "key 'render.memoryBudgetMB': these settings need %.0f MiB of GPU memory (image %dx%d, "
                       "shadow maps %d^2 for %zu lights, technique %s %.0f MiB, scene %.0f MiB), over the budget of %.0f MiB",
-                      mb, fs.width, fs.height, fs.render.shadowMapSize, fs.lights.size(), enumName(fs.technique), technique,
+                      mb, fs.width, fs.height, fs.render.shadowMapSize, fs.lights.size(), fs.technique.c_str(), technique,
                       double(sceneBytes) / (1024.0 * 1024.0), double(fs.render.memoryBudgetMB));
         throw Error(buf);
     }
@@ -210,38 +199,87 @@ void Renderer::prepareShadows(const FrameSettings& fs) {
     }
 }
 
+void Renderer::selectPasses(const FrameSettings& fs) {
+    if (fs.technique == mTechniqueName && !mPasses.empty() && mPasses.back().pass) return;
+    std::erase_if(mPasses, [](const ActivePass& p) { return !p.info || p.info->role == PassRole::Technique; });
+    if (const PassInfo* info = findPass(fs.technique); info && info->role == PassRole::Technique) {
+        // In registry order among the effects, so the stages run in the order the list gives.
+        auto at = std::find_if(mPasses.begin(), mPasses.end(), [&](const ActivePass& p) { return p.info > info; });
+        mPasses.insert(at, {info, info->create()});
+    } else {
+        mPasses.push_back({nullptr, std::make_unique<AmbientPass>()});
+    }
+    mTechniqueName = fs.technique;
+}
+
+template <class F>
+void Renderer::runStage(FrameContext& ctx, F&& stage) {
+    for (ActivePass& p : mPasses) {
+        const FrameSettings& fs = ctx.settings;
+        if (!p.completed) {
+            ctx.changes = kEverything;
+        } else {
+            const FrameSettings& before = *p.completed;
+            ctx.changes = lightChanges(before, fs);
+            if (before.width != fs.width || before.height != fs.height) ctx.changes |= uint8_t(Cost::Reallocate);
+            if (p.info) ctx.changes |= p.info->changes(before, fs);
+        }
+        stage(*p.pass, ctx);
+    }
+}
+
 void Renderer::render(const FrameSettings& fs) {
     GI_ASSERT(mScene, "Renderer::render before setScene");
     checkMemoryBudget(fs, mScene->memoryBytes());
     resize(fs.width, fs.height);
     prepareShadows(fs);
+    selectPasses(fs);
     mCamera = fs.camera;
 
-    if (fs.technique != mTechniqueKind || (fs.technique != TechniqueKind::None && !mTechnique)) {
-        mTechnique.reset();
-        if (fs.technique == TechniqueKind::LPV) mTechnique = std::make_unique<LPV>();
-        if (fs.technique == TechniqueKind::VCT) mTechnique = std::make_unique<VCT>();
-        mTechniqueKind = fs.technique;
-    }
     glm::mat4 view = viewMatrix(fs.camera);
     glm::mat4 proj = projectionMatrix(fs.camera, float(fs.width) / float(fs.height));
     glm::mat4 viewProj = proj * view;
+    // The shadow maps as the passes read them (their matrices are set when they are drawn).
+    mShadowViews.assign(fs.lights.size(), ShadowMapView{});
+    FrameContext ctx{fs,
+                     *mScene,
+                     view,
+                     proj,
+                     viewProj,
+                     glm::inverse(viewProj),
+                     mAlbedo.id(),
+                     mNormal.id(),
+                     mMaterial.id(),
+                     mEmissive.id(),
+                     mDepth.id(),
+                     mIndirect.id(),
+                     mIndirectSpecular.id(),
+                     mHDR.id(),
+                     mShadowViews,
+                     mShadowSize,
+                     mWidth,
+                     mHeight,
+                     mTimer,
+                     mProgress};
+    ctx.ambientOcclusion = mWhite.id();
 
     mTimer.beginFrame();
-    mEnvironment.prepare(fs.environment, mTimer, fs.render, mProgress);
+    runStage(ctx, [](Pass& p, FrameContext& c) { p.prepare(c); });
     renderShadows(fs);
+    for (size_t i = 0; i < fs.lights.size(); ++i)
+        if (fs.lights[i].castShadows)
+            mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mShadows[i].viewProj, mShadows[i].far};
     renderGBuffer(viewProj);
-    renderIndirect(fs, view, proj);
-    mSSAO.execute(fs.ssao, mDepth.id(), mNormal.id(), mWidth, mHeight, view, proj, mTimer);
-    renderLighting(fs, viewProj);
-    if (fs.environment.enabled && fs.environment.skybox && mEnvironment.ready())
-        mEnvironment.sky(fs.environment, mDepth.id(), mHDR.id(), mWidth, mHeight, glm::inverse(viewProj), fs.camera.eye, mTimer);
-    mVolumetric.execute({fs, mScene->bounds(), mShadowViews, mDepth.id(), mHDR.id(), mWidth, mHeight, glm::inverse(viewProj),
-                         float(mShadowSize)},
-                        mTimer);
+    const glm::vec4 zero(0.0f);
+    glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
+    runStage(ctx, [](Pass& p, FrameContext& c) { p.indirect(c); });
+    runStage(ctx, [](Pass& p, FrameContext& c) { p.beforeLighting(c); });
+    renderLighting(fs, viewProj, ctx);
+    runStage(ctx, [](Pass& p, FrameContext& c) { p.afterLighting(c); });
     renderToneMap(fs);
     mTimer.endFrame();
     mTimer.resolve(false);
+    for (ActivePass& p : mPasses) p.completed = fs;
 }
 
 void Renderer::renderShadows(const FrameSettings& fs) {
@@ -345,35 +383,7 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glBindSampler(kUnitBaseColor, 0);
 }
 
-void Renderer::renderIndirect(const FrameSettings& fs, const glm::mat4& view, const glm::mat4& proj) {
-    const glm::vec4 zero(0.0f);
-    glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
-    // The shadow maps as the technique and the volumetric pass read them.
-    mShadowViews.assign(fs.lights.size(), ShadowMapView{});
-    for (size_t i = 0; i < fs.lights.size(); ++i)
-        if (fs.lights[i].castShadows)
-            mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mShadows[i].viewProj, mShadows[i].far};
-    if (mTechnique) {
-        FrameContext ctx{fs,         *mScene,      view,           proj,          proj * view,
-                         glm::inverse(proj * view), mAlbedo.id(), mNormal.id(), mMaterial.id(), mDepth.id(),
-                         mIndirect.id(),            mIndirectSpecular.id(),     mShadowViews,  mWidth,
-                         mHeight,                   mTimer};
-        mTechnique->execute(ctx);
-        return;
-    }
-    if (fs.environment.enabled && mEnvironment.ready()) {
-        // Technique none with an environment: it gives the indirect diffuse and specular terms.
-        mEnvironment.shade(fs.environment, mNormal.id(), mMaterial.id(), mDepth.id(), mIndirect.id(), mIndirectSpecular.id(), mWidth,
-                           mHeight, glm::inverse(proj * view), fs.camera.eye, mTimer);
-        return;
-    }
-    auto pass = mTimer.scope("indirect");
-    // Technique none: the indirect term is the constant ambient radiance.
-    const glm::vec4 ambient(fs.render.ambient, 1.0f);
-    glClearTexImage(mIndirect.id(), 0, GL_RGBA, GL_FLOAT, &ambient[0]);
-}
-
-void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj) {
+void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx) {
     auto pass = mTimer.scope("lighting");
     glBindFramebuffer(GL_FRAMEBUFFER, mHDRFBO.id());
     glViewport(0, 0, mWidth, mHeight);
@@ -389,11 +399,11 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     }
     glBindTextureUnit(kUnitIndirect, mIndirect.id());
     glBindSampler(kUnitIndirect, mPointSampler.id());
-    glBindTextureUnit(kUnitAO, mSSAO.aoTexture());
+    glBindTextureUnit(kUnitAO, ctx.ambientOcclusion);
     glBindSampler(kUnitAO, mPointSampler.id());
     glBindTextureUnit(kUnitIndirectSpecular, mIndirectSpecular.id());
     glBindSampler(kUnitIndirectSpecular, mPointSampler.id());
-    glBindTextureUnit(kUnitBRDFLUT, mEnvironment.brdfLUT());
+    glBindTextureUnit(kUnitBRDFLUT, ctx.brdfLUT);
     glBindSampler(kUnitBRDFLUT, mLUTSampler.id());
     glm::mat4 inv = glm::inverse(viewProj);
 
@@ -461,10 +471,8 @@ void Renderer::renderToneMap(const FrameSettings& fs) {
 bool Renderer::reloadShaders(std::string& log) {
     bool ok = true;
     log.clear();
-    if (mTechnique && !mTechnique->reloadShaders(log)) ok = false;
-    if (!mSSAO.reloadShaders(log)) ok = false;
-    if (!mVolumetric.reloadShaders(log)) ok = false;
-    if (!mEnvironment.reloadShaders(log)) ok = false;
+    for (ActivePass& p : mPasses)
+        if (!p.pass->reloadShaders(log)) ok = false;
     for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
@@ -490,11 +498,8 @@ std::vector<DebugView> Renderer::debugViews() const {
     add("emissive", mEmissive, kViewColor);
     add("indirect", mIndirect, kViewColor);
     add("indirectSpecular", mIndirectSpecular, kViewColor);
-    if (mTechnique)
-        for (DebugView& tv : mTechnique->debugViews()) v.push_back(tv);
-    for (DebugView& sv : mSSAO.debugViews()) v.push_back(sv);
-    for (DebugView& vv : mVolumetric.debugViews()) v.push_back(vv);
-    for (DebugView& ev : mEnvironment.debugViews()) v.push_back(ev);
+    for (const ActivePass& p : mPasses)
+        for (DebugView& pv : p.pass->debugViews()) v.push_back(std::move(pv));
     for (size_t i = 0; i < mShadows.size(); ++i) {
         if (!mShadows[i].depth) continue;
         std::string name = "shadow" + std::to_string(i);
@@ -520,10 +525,8 @@ std::vector<PassStats> Renderer::passStats() const {
         else if (r.name == "indirect") bytes = mIndirect.bytes() + mIndirectSpecular.bytes();
         else if (r.name == "lighting") bytes = mHDR.bytes();
         else if (r.name == "tonemap") bytes = mLDR.bytes();
-        else if (r.name == "ssao") bytes = mSSAO.memoryBytes();  // both AO targets; the blur pass holds none
-        else if (r.name == "volumetric.march") bytes = mVolumetric.memoryBytes();  // both buffers
-        else if (r.name == "environment.prefilter") bytes = mEnvironment.memoryBytes();
-        else if (mTechnique) bytes = mTechnique->passMemory(r.name);
+        else
+            for (const ActivePass& p : mPasses) bytes += p.pass->passMemory(r.name);
         out.push_back({r.name, r.gpuMs, bytes});
     }
     return out;
@@ -531,14 +534,24 @@ std::vector<PassStats> Renderer::passStats() const {
 
 size_t Renderer::memoryBytes() const {
     size_t total = mScene ? mScene->memoryBytes() : 0;
-    if (mTechnique) total += mTechnique->memoryBytes();
-    total += mSSAO.memoryBytes();
-    total += mVolumetric.memoryBytes();
-    total += mEnvironment.memoryBytes();
+    for (const ActivePass& p : mPasses) total += p.pass->memoryBytes();
     for (auto& s : mShadows) total += s.depth.bytes();
     for (const gl::Texture* t : {&mAlbedo, &mNormal, &mMaterial, &mEmissive, &mDepth, &mIndirect, &mIndirectSpecular, &mHDR, &mLDR})
         total += t->bytes();
     return total;
+}
+
+const Pass* Renderer::technique() const {
+    for (const ActivePass& p : mPasses)
+        if (!p.info || p.info->role == PassRole::Technique) return p.pass.get();
+    return nullptr;
+}
+
+std::vector<VolumeMemory> Renderer::volumeMemory() const {
+    std::vector<VolumeMemory> out;
+    for (const ActivePass& p : mPasses)
+        for (VolumeMemory& v : p.pass->volumeMemory()) out.push_back(std::move(v));
+    return out;
 }
 
 std::vector<uint8_t> Renderer::readLDR() const {

@@ -9,77 +9,24 @@
 //             (RGBA16F, else 0); technique none fills the constant ambient radiance
 //   lighting  emission + albedo * indirect, then each light added with its shadow (HDR RGBA16F)
 //   tonemap   exposure, tone curve, sRGB into RGBA8
+// The GI passes (gi/render/pass.h) run at their stages around these: the renderer finds them in
+// the pass registry and knows none of them by name.
 #pragma once
 
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/render/gpu_scene.h"
+#include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
-#include "gi/render/technique.h"
 #include "gi/scene/camera.h"
 #include "gi/scene/scene.h"
-#include "gi/ssao/ssao.h"
-#include "gi/volumetric/volumetric.h"
-#include "gi/envmap/environment.h"
 
 #include <memory>
+#include <optional>
 #include <span>
 
 namespace gi {
-
-// A texture the previewers can show, with the mode that displays it sensibly.
-struct DebugView {
-    std::string name;
-    GLuint texture = 0;
-    GLenum target = GL_TEXTURE_2D;
-    int mode = 0;        // shared::kView*
-    int width = 0, height = 0;
-    float near = 0.0f, far = 1.0f, range = 1.0f;  // for depth linearisation
-    GLuint extra[2] = {0, 0};  // SH volumes: the G and B coefficient textures (texture holds R)
-    float scale = 1.0f;        // SH volumes: factor from stored values to radiance
-    int level = 0;             // mip shown (added to ViewParams::level), e.g. a prefiltered environment mip
-};
-
-struct PassStats {
-    std::string name;
-    double gpuMs = 0.0;
-    size_t memoryBytes = 0;
-};
-
-// GPU copy of a Scene.
-class GPUScene {
-public:
-    explicit GPUScene(const Scene& scene);
-    // Issues the scene's draws. `bindMaterial` sets per-material uniforms and textures.
-    template <class F>
-    void draw(F&& bindMaterial) const {
-        glBindVertexArray(mVAO.id());
-        for (const Draw& d : mDraws) {
-            bindMaterial(mMaterials[d.material], d.material);
-            glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4));
-        }
-    }
-    // Bytes a scene will take on the GPU (vertices, indices, textures with their mips), known
-    // before upload so budgets can refuse it first.
-    static size_t estimateBytes(const Scene& scene);
-    GLuint texture(int index) const { return index >= 0 ? mTextures[index].id() : 0; }
-    const std::vector<Material>& materials() const { return mMaterials; }
-    // Distinct for every GPUScene made in the process, so techniques can tell a new scene apart.
-    uint64_t id() const { return mId; }
-    size_t memoryBytes() const { return mBytes; }
-    const Bounds& bounds() const { return mBounds; }
-
-private:
-    gl::Buffer mVertices, mIndices;
-    gl::VertexArray mVAO;
-    std::vector<gl::Texture> mTextures;
-    std::vector<Draw> mDraws;
-    std::vector<Material> mMaterials;
-    Bounds mBounds;
-    size_t mBytes = 0;
-    uint64_t mId = 0;
-};
 
 class Renderer {
 public:
@@ -114,12 +61,17 @@ public:
     std::vector<PassStats> passStats() const;
     size_t memoryBytes() const;
     gl::GpuTimer& timer() { return mTimer; }
-    // The technique of the last frame (null for none), for tests and the editor's previewers.
-    const Technique* technique() const { return mTechnique.get(); }
-    const Environment& environment() const { return mEnvironment; }
-    std::vector<Technique::VolumeMemory> techniqueVolumes() const {
-        return mTechnique ? mTechnique->volumeMemory() : std::vector<Technique::VolumeMemory>{};
+    // The technique pass of the last frame (technique none's pass for none).
+    const Pass* technique() const;
+    // The active pass of that type, or null (tests and the previewers of one pass).
+    template <class T>
+    const T* activePass() const {
+        for (const ActivePass& p : mPasses)
+            if (auto* t = dynamic_cast<const T*>(p.pass.get())) return t;
+        return nullptr;
     }
+    // Every volume or buffer the active passes hold.
+    std::vector<VolumeMemory> volumeMemory() const;
 
     std::vector<uint8_t> readLDR() const;  // RGBA8, bottom row first
     std::vector<float> readHDR() const;    // RGBA32F, bottom row first
@@ -172,19 +124,28 @@ private:
     CameraSettings mCamera;
 
     gl::GpuTimer mTimer;
-    std::unique_ptr<Technique> mTechnique;
-    SSAO mSSAO;
-    Volumetric mVolumetric;
-    Environment mEnvironment;
+    // The registry's passes in its order: every effect, the chosen technique (created when it
+    // is chosen), and technique none's ambient fill last. `info` is null for the ambient fill.
+    struct ActivePass {
+        const PassInfo* info = nullptr;
+        std::unique_ptr<Pass> pass;
+        std::optional<FrameSettings> completed;  // the settings of the last frame it completed
+    };
+    std::vector<ActivePass> mPasses;
     ProgressSink mProgress;
-    TechniqueKind mTechniqueKind = TechniqueKind::None;
+    std::string mTechniqueName;
+
+    void selectPasses(const FrameSettings& fs);
+    // Calls `stage` on every active pass with ctx.changes set for that pass: what changed since
+    // the last frame it completed (everything on its first).
+    template <class F>
+    void runStage(FrameContext& ctx, F&& stage);
 
     void resize(int width, int height);
     void prepareShadows(const FrameSettings& fs);
     void renderShadows(const FrameSettings& fs);
     void renderGBuffer(const glm::mat4& viewProj);
-    void renderIndirect(const FrameSettings& fs, const glm::mat4& view, const glm::mat4& proj);
-    void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj);
+    void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx);
     void renderToneMap(const FrameSettings& fs);
 };
 

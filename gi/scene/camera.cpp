@@ -20,4 +20,13 @@ glm::mat4 projectionMatrix(const CameraSettings& c, float aspect) {
     return glm::perspective(glm::radians(c.fovY), aspect, c.near, far);
 }
 
+void takeSceneCamera(CameraSettings& camera, const CameraSettings& sceneCamera) {
+    camera.eye = sceneCamera.eye;
+    camera.target = sceneCamera.target;
+    camera.up = sceneCamera.up;
+    camera.fovY = sceneCamera.fovY;
+    camera.near = sceneCamera.near;
+    camera.far = sceneCamera.far;
+}
+
 }  // namespace gi

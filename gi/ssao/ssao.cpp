@@ -1,6 +1,5 @@
 #include "gi/ssao/ssao.h"
 
-#include "gi/render/renderer.h"
 #include "gi/util/error.h"
 #include "ssao/ssao_shared.h"
 
@@ -168,9 +167,21 @@ std::vector<DebugView> SSAO::debugViews() const {
     return v;
 }
 
+void SSAO::beforeLighting(FrameContext& ctx) {
+    execute(ctx.settings.ssao, ctx.depth, ctx.normal, ctx.width, ctx.height, ctx.view, ctx.proj, ctx.timer);
+    ctx.ambientOcclusion = aoTexture();
+}
+
+std::vector<std::string> SSAO::passNames(const FrameSettings& fs) const {
+    if (!fs.ssao.enabled) return {"ssao"};
+    return {"ssao", "ssaoBlur"};
+}
+
+std::unique_ptr<Pass> SSAOSettings::createPass() { return std::make_unique<SSAO>(); }
+size_t SSAOSettings::estimateBytes(const FrameSettings& fs) { return SSAO::estimateBytes(fs.width, fs.height); }
+
 bool SSAO::reloadShaders(std::string& log) {
     bool ok = true;
-    log.clear();
     for (gl::Program* p : {&mSSAOProg, &mBlurProg}) {
         if (!p->reload()) {
             ok = false;

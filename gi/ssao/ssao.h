@@ -54,6 +54,7 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/render/pass.h"
 #include "gi/ssao/ssao_settings.h"
 
 #include <glm/glm.hpp>
@@ -65,9 +66,6 @@
 
 namespace gi {
 
-// Defined in gi/render/renderer.h, which may include this header for its SSAO member.
-struct DebugView;
-
 // The seed of the kernel and the noise tile: fixed so renders are deterministic.
 inline constexpr uint32_t kSSAOSeed = 20110101u;
 
@@ -77,7 +75,7 @@ std::vector<glm::vec3> ssaoKernel(int count, uint32_t seed = kSSAOSeed);
 // The 4x4 noise tile as (cos, sin) of a rotation about the normal, row-major by (y & 3, x & 3).
 std::array<glm::vec2, 16> ssaoNoise(uint32_t seed = kSSAOSeed);
 
-class SSAO {
+class SSAO final : public Pass {
 public:
     SSAO();  // compiles the programs; throws gi::Error on a shader error
 
@@ -87,14 +85,20 @@ public:
     void execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalTexture, int width, int height,
                  const glm::mat4& view, const glm::mat4& proj, gl::GpuTimer& timer);
 
+    // The pass's stage: execute() on the G-buffer, then aoTexture() as the frame's AO.
+    void beforeLighting(FrameContext& ctx) override;
+
     GLuint aoTexture() const { return mAO.id(); }  // R8, after blur and strength; reads as (ao, ao, ao, 1)
-    size_t memoryBytes() const { return mRaw.bytes() + mAO.bytes(); }
+    size_t memoryBytes() const override { return mRaw.bytes() + mAO.bytes(); }
+    // Both AO targets count under "ssao"; the blur pass holds none of its own.
+    size_t passMemory(const std::string& pass) const override { return pass == "ssao" ? memoryBytes() : 0; }
+    std::vector<std::string> passNames(const FrameSettings& fs) const override;
     // Bytes execute() allocates at this size, known before allocation for budgets.
     static size_t estimateBytes(int width, int height);
     // "ssaoRaw" (visibility before blur and strength) and "ssao" (aoTexture()).
-    std::vector<DebugView> debugViews() const;
-    // Rebuilds the programs from disk; a failure keeps the old ones and returns the log.
-    bool reloadShaders(std::string& log);
+    std::vector<DebugView> debugViews() const override;
+    // Rebuilds the programs from disk; a failure keeps the old ones and appends the log.
+    bool reloadShaders(std::string& log) override;
 
 private:
     gl::Program mSSAOProg, mBlurProg;

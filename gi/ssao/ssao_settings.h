@@ -9,6 +9,10 @@ namespace gi {
 
 struct SSAOSettings {
     static constexpr std::string_view kSection = "ssao";
+    // The pass these settings drive, registered by the section list (gi/preset/settings.h).
+    static constexpr PassRole kRole = PassRole::Effect;
+    static std::unique_ptr<Pass> createPass();
+    static size_t estimateBytes(const FrameSettings& fs);
     bool enabled = false;    // multiply the indirect term by ambient occlusion
     float radius = 0.5f;     // world-space hemisphere radius, metres (0.01..10)
     int sampleCount = 16;    // kernel samples per pixel (4..64)

@@ -3,7 +3,7 @@
 #include "gi/render/light_uniforms.h"
 
 #include "common/shared.h"
-#include "gi/render/renderer.h"
+#include "gi/render/gpu_scene.h"
 #include "gi/util/error.h"
 #include "vct/vct_shared.h"
 
@@ -113,21 +113,23 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     return bytes;
 }
 
-void VCT::allocate(const FrameSettings& fs) {
+void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     const VCTSettings& s = fs.vct;
     int count = levelCountOf(s);
-    bool changed = s.gridResolution != mResolution || int(mLevels.size()) != count || s.mode != mMode ||
-                   anisotropicOn(s) != mAnisotropic || shOn(s) != mSHVoxels;
-    if (!changed) return;
+    if (any(Cost(changes), Cost::Recompile)) {
+        // The level count and the voxel layout are compiled into the bounce and trace programs.
+        mAnisotropic = anisotropicOn(s);
+        mSHVoxels = shOn(s);
+        std::vector<std::string> defines = {"VCT_LEVELS " + std::to_string(count),
+                                            std::string("VCT_ANISO ") + (mAnisotropic ? "1" : "0"),
+                                            std::string("VCT_SH ") + (mSHVoxels ? "1" : "0")};
+        mBounceProg = gl::Program("vct.bounce", {{GL_COMPUTE_SHADER, "vct/bounce.comp"}}, defines);
+        mTraceProg = gl::Program("vct.trace", {{GL_COMPUTE_SHADER, "vct/trace.comp"}}, defines);
+    }
+    if (!any(Cost(changes), Cost::Reallocate)) return;
+    mMode = s.mode;
     mResolution = s.gridResolution;
     mMipCount = vctMipCount(mResolution);
-    mMode = s.mode;
-    mAnisotropic = anisotropicOn(s);
-    mSHVoxels = shOn(s);
-    std::vector<std::string> defines = {"VCT_LEVELS " + std::to_string(count), std::string("VCT_ANISO ") + (mAnisotropic ? "1" : "0"),
-                                        std::string("VCT_SH ") + (mSHVoxels ? "1" : "0")};
-    mBounceProg = gl::Program("vct.bounce", {{GL_COMPUTE_SHADER, "vct/bounce.comp"}}, defines);
-    mTraceProg = gl::Program("vct.trace", {{GL_COMPUTE_SHADER, "vct/trace.comp"}}, defines);
     mLevels.clear();
     mVoxelBytes = mRadianceBytes = 0;
     int r = mResolution;
@@ -159,8 +161,8 @@ void VCT::allocate(const FrameSettings& fs) {
     mVoxelizedVoxels.assign(size_t(count), 0);
 }
 
-void VCT::execute(const FrameContext& ctx) {
-    allocate(ctx.settings);
+void VCT::indirect(FrameContext& ctx) {
+    allocate(ctx.settings, ctx.changes);
     updateGrids(ctx);
     inject(ctx);
     {
@@ -170,6 +172,7 @@ void VCT::execute(const FrameContext& ctx) {
     }
     bounce(ctx);
     trace(ctx);
+    ctx.indirectWritten = true;
 }
 
 void VCT::setGridUniforms(const gl::Program& p, const Level& level) const {
@@ -517,7 +520,7 @@ size_t VCT::passMemory(const std::string& pass) const {
     return 0;
 }
 
-std::vector<Technique::VolumeMemory> VCT::volumeMemory() const {
+std::vector<VolumeMemory> VCT::volumeMemory() const {
     std::vector<VolumeMemory> v;
     std::string r = std::to_string(mResolution) + "^3 ";
     std::string mips = ", " + std::to_string(mMipCount) + " mips";
@@ -541,6 +544,17 @@ std::vector<Technique::VolumeMemory> VCT::volumeMemory() const {
                      mLowIndirect.bytes() + mLowSpecular.bytes()});
     return v;
 }
+
+std::vector<std::string> VCT::passNames(const FrameSettings& fs) const {
+    std::vector<std::string> names{"vct.voxelize", "vct.inject", "vct.mip"};
+    if (fs.vct.bounceCount > 1) names.push_back("vct.bounce");
+    names.push_back("vct.trace");
+    if (fs.vct.traceScale < 1.0f) names.push_back("vct.upsample");
+    return names;
+}
+
+std::unique_ptr<Pass> VCTSettings::createPass() { return std::make_unique<VCT>(); }
+size_t VCTSettings::estimateBytes(const FrameSettings& fs) { return VCT::estimateBytes(fs); }
 
 size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndirect.bytes() + mLowSpecular.bytes(); }
 

@@ -57,7 +57,7 @@
 
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
-#include "gi/render/technique.h"
+#include "gi/render/pass.h"
 #include "gi/vct/cone_set.h"
 
 #include <glm/glm.hpp>
@@ -83,18 +83,19 @@ std::vector<VoxelBox> vctLevels(const VCTSettings& s, const glm::vec3& sceneMin,
 // addressing keeps mip texels aligned), at most log2(res) + 1.
 int vctMipCount(int resolution);
 
-class VCT : public Technique {
+class VCT : public Pass {
 public:
     VCT();
     ~VCT() override;
 
     static size_t estimateBytes(const FrameSettings& fs);
 
-    void execute(const FrameContext& ctx) override;
+    void indirect(FrameContext& ctx) override;
     std::vector<DebugView> debugViews() const override;
     size_t passMemory(const std::string& pass) const override;
     size_t memoryBytes() const override;
     std::vector<VolumeMemory> volumeMemory() const override;
+    std::vector<std::string> passNames(const FrameSettings& fs) const override;
     bool reloadShaders(std::string& log) override;
 
     struct Level {
@@ -136,7 +137,7 @@ private:
     int mVoxelizationCount = 0;
     float mEmissionRange = 1.0f;
 
-    void allocate(const FrameSettings& fs);
+    void allocate(const FrameSettings& fs, uint8_t changes);
     void setGridUniforms(const gl::Program& p, const Level& level) const;
     void setTraceUniforms(const gl::Program& p, const VCTSettings& s) const;
     void voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax);

@@ -31,6 +31,10 @@ struct EnumNames<ConeWeighting> {
 
 struct VCTSettings {
     static constexpr std::string_view kSection = "vct";
+    // The pass these settings drive, registered by the section list (gi/preset/settings.h).
+    static constexpr PassRole kRole = PassRole::Technique;
+    static std::unique_ptr<Pass> createPass();
+    static size_t estimateBytes(const FrameSettings& fs);
     int gridResolution = 64;          // voxels per side of the grid (of every level in cascaded and clipmap modes)
     VCTMode mode = VCTMode::Dense;    // dense: one grid over the scene; cascaded and clipmap: nested levels around the camera
     int levelCount = 3;               // cascaded and clipmap: nested levels, each twice the extent of the previous
@@ -58,8 +62,8 @@ struct VCTSettings {
     template <class V>
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Voxels per side of the grid (of each level)", "voxels", 32, 256, Cost::Reallocate, 1});
-        v(mode, {"mode", "dense: one grid over the scene; cascaded: nested grids snapped to res/8 cells; clipmap: nested grids with toroidal updates", "", 0, 0, Cost::Reallocate});
-        v(levelCount, {"levelCount", "Nested levels in cascaded and clipmap modes", "", 1, 6, Cost::Reallocate});
+        v(mode, {"mode", "dense: one grid over the scene; cascaded: nested grids snapped to res/8 cells; clipmap: nested grids with toroidal updates", "", 0, 0, Cost::Reallocate | Cost::Recompile});
+        v(levelCount, {"levelCount", "Nested levels in cascaded and clipmap modes", "", 1, 6, Cost::Reallocate | Cost::Recompile});
         v(levelExtent, {"levelExtent", "World size of the finest level (0: fit the scene)", "m", 0, 1e5});
         v(coneSet, {"coneSet", "Diffuse cones: six (seed 003), nine (seed 000) or custom (coneCount on the hemisphere)"});
         v(coneCount, {"coneCount", "Diffuse cones of the custom set", "", 1, 32});
@@ -69,8 +73,8 @@ struct VCTSettings {
         v(stepMultiplier, {"stepMultiplier", "Step length in cone diameters", "", 0.1, 4});
         v(maxDistance, {"maxDistance", "Cone length (0: the grid's diagonal)", "m", 0, 1e5});
         v(bounceCount, {"bounceCount", "Light bounces stored in the voxels (2 or 3 re-inject traced light)", "", 1, 3});
-        v(anisotropic, {"anisotropic", "Six directional mip volumes (seed 003); isotropic voxels only", "", 0, 0, Cost::Reallocate});
-        v(sh, {"sh", "Voxel radiance as 2-band SH per colour (seed 000's VCT SH)", "", 0, 0, Cost::Reallocate});
+        v(anisotropic, {"anisotropic", "Six directional mip volumes (seed 003); isotropic voxels only", "", 0, 0, Cost::Reallocate | Cost::Recompile});
+        v(sh, {"sh", "Voxel radiance as 2-band SH per colour (seed 000's VCT SH)", "", 0, 0, Cost::Reallocate | Cost::Recompile});
         v(specularCone, {"specularCone", "Trace a specular cone along the reflection", ""});
         v(specularApertureMin, {"specularApertureMin", "Specular cone aperture at roughness 0", "deg", 0.5, 120});
         v(specularApertureMax, {"specularApertureMax", "Specular cone aperture at roughness 1", "deg", 0.5, 120});
@@ -79,8 +83,9 @@ struct VCTSettings {
         v(vaoDistance, {"vaoDistance", "Occlusion range of the VAO (0: maxDistance)", "m", 0, 1e5});
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
         v(revoxelizeEveryFrame, {"revoxelizeEveryFrame", "Voxelize every frame (dynamic geometry, benchmarks) instead of only when the grid moves", ""});
+        // Uniform: the trace targets follow the image size, which the pass checks every frame.
         v(traceScale, {"traceScale", "Resolution scale of the cone trace (depth- and normal-aware upsampling below 1)", "", 0.125, 1,
-                       Cost::Reallocate, 0.125});
+                       Cost::Uniform, 0.125});
     }
 };
 

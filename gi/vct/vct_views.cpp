@@ -37,7 +37,7 @@ std::vector<VoxelGridView> voxelGrids(const VCT& vct, VCTMode mode) {
 
 std::vector<VoxelGridView> voxelGrids(const std::vector<DebugView>& views, const FrameSettings& fs, const Bounds& sceneBounds) {
     std::vector<VoxelGridView> grids;
-    if (fs.technique != TechniqueKind::VCT || !sceneBounds.valid()) return grids;
+    if (fs.technique != "vct" || !sceneBounds.valid()) return grids;
     auto find = [&](const std::string& name) -> const DebugView* {
         for (const DebugView& v : views)
             if (v.name == name) return &v;

@@ -2,7 +2,7 @@
 
 #include "common/shared.h"
 #include "gi/render/light_uniforms.h"
-#include "gi/render/renderer.h"
+#include "gi/render/gpu_scene.h"
 #include "gi/util/error.h"
 
 #include <algorithm>
@@ -149,6 +149,24 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
         glBindSampler(shared::kUnitDepth, 0);
     }
 }
+
+void Volumetric::afterLighting(FrameContext& ctx) {
+    execute({ctx.settings, ctx.scene.bounds(), ctx.shadows, ctx.depth, ctx.hdr, ctx.width, ctx.height, ctx.invViewProj,
+             float(ctx.shadowSize)},
+            ctx.timer);
+}
+
+std::vector<std::string> Volumetric::passNames(const FrameSettings& fs) const {
+    const VolumetricSettings& s = fs.volumetric;
+    if (!s.enabled || s.density <= 0.0f) return {};
+    std::vector<std::string> names{"volumetric.march"};
+    if (s.blur != VolumeBlur::None) names.push_back("volumetric.blur");
+    names.push_back("volumetric.composite");
+    return names;
+}
+
+std::unique_ptr<Pass> VolumetricSettings::createPass() { return std::make_unique<Volumetric>(); }
+size_t VolumetricSettings::estimateBytes(const FrameSettings& fs) { return Volumetric::estimateBytes(fs); }
 
 std::vector<DebugView> Volumetric::debugViews() const {
     std::vector<DebugView> v;

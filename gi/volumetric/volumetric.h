@@ -32,7 +32,7 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
-#include "gi/render/technique.h"
+#include "gi/render/pass.h"
 #include "gi/scene/scene.h"
 #include "gi/volumetric/medium.h"
 
@@ -43,9 +43,7 @@
 
 namespace gi {
 
-struct DebugView;
-
-class Volumetric {
+class Volumetric final : public Pass {
 public:
     Volumetric();  // compiles the programs; throws gi::Error on a shader error
 
@@ -61,12 +59,17 @@ public:
     };
     // Does nothing (and holds no memory) unless the settings' medium is active.
     void execute(const Inputs& in, gl::GpuTimer& timer);
+    // The pass's stage: execute() on the lit image.
+    void afterLighting(FrameContext& ctx) override;
 
-    size_t memoryBytes() const { return mMarch.bytes() + mBlurred.bytes(); }
+    size_t memoryBytes() const override { return mMarch.bytes() + mBlurred.bytes(); }
+    // Both buffers count under the march.
+    size_t passMemory(const std::string& pass) const override { return pass == "volumetric.march" ? memoryBytes() : 0; }
+    std::vector<std::string> passNames(const FrameSettings& fs) const override;
     static size_t estimateBytes(const FrameSettings& fs);
     // "volumetricRaw" (the march) and "volumetric" (after the blur), when active.
-    std::vector<DebugView> debugViews() const;
-    bool reloadShaders(std::string& log);
+    std::vector<DebugView> debugViews() const override;
+    bool reloadShaders(std::string& log) override;
     GLuint result() const { return mBlurred.id(); }
 
 private:

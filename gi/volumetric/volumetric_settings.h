@@ -41,6 +41,10 @@ struct EnumNames<VolumeBlur> {
 
 struct VolumetricSettings {
     static constexpr std::string_view kSection = "volumetric";
+    // The pass these settings drive, registered by the section list (gi/preset/settings.h).
+    static constexpr PassRole kRole = PassRole::Effect;
+    static std::unique_ptr<Pass> createPass();
+    static size_t estimateBytes(const FrameSettings& fs);
     bool enabled = false;                  // add in-scattered light (and fade the scene by the medium)
     float density = 0.1f;                  // scattering coefficient sigma_s, 1/m; 0 adds nothing
     VolumeAttenuation attenuation = VolumeAttenuation::Coefficients;

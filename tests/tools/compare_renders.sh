@@ -12,8 +12,8 @@ for dir in "$before"/*/; do
   if [ ! -f "$after/$name/image.exr" ]; then
     printf '%-28s %s\n' "$name" "missing after"; status=1; continue
   fi
-  hdr=$(idiff -a "$dir/image.exr" "$after/$name/image.exr" 2>&1 | awk '/Max error/ {print $3}')
-  png=$(idiff -a "$dir/image.png" "$after/$name/image.png" 2>&1 | awk '/Max error/ {print $3}')
+  hdr=$(idiff -a "$dir/image.exr" "$after/$name/image.exr" 2>&1 | awk '/Max error/ {print $4}')
+  png=$(idiff -a "$dir/image.png" "$after/$name/image.png" 2>&1 | awk '/Max error/ {print $4}')
   printf '%-28s %14s %14s\n' "$name" "${hdr:-0}" "${png:-0}"
   [ "${hdr:-0}" = 0 ] || status=1
 done

@@ -1,0 +1,42 @@
+#include "gi/render/gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gi {
+
+GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.materials), mBounds(scene.bounds) {
+    static uint64_t sCount = 0;
+    mId = ++sCount;
+    mVertices = gl::createBuffer(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
+    mIndices = gl::createBuffer(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
+    mBytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    mVAO = gl::VertexArray(vao);
+    glVertexArrayVertexBuffer(vao, 0, mVertices.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, mIndices.id());
+    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv)};
+    const GLint sizes[3] = {3, 3, 2};
+    for (GLuint a = 0; a < 3; ++a) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
+        glVertexArrayAttribBinding(vao, a, 0);
+    }
+    for (const Texture& t : scene.textures) {
+        int levels = 1 + int(std::floor(std::log2(std::max(t.width, t.height))));
+        gl::Texture tex = gl::Texture::create2D(GL_SRGB8_ALPHA8, t.width, t.height, levels);
+        glTextureSubImage2D(tex.id(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+        glGenerateTextureMipmap(tex.id());
+        mBytes += tex.bytes();
+        mTextures.push_back(std::move(tex));
+    }
+}
+
+size_t GPUScene::estimateBytes(const Scene& scene) {
+    size_t bytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
+    for (const Texture& t : scene.textures) bytes += t.rgba.size() * 4 / 3;  // the mip chain adds a third
+    return bytes;
+}
+
+}  // namespace gi

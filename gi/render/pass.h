@@ -1,0 +1,129 @@
+// The one interface of every GI pass (LPV, VCT, SSAO, the environment, volumetric lighting and
+// technique none), the frame context they read and write, and the registry that finds them.
+// It sits below the techniques: a technique includes this file, never the renderer, and the
+// renderer includes no technique.
+//
+// A frame runs the passes in stages; in each stage every active pass is called in registry order
+// (the section list in gi/render/render_settings.h), the selected technique among them:
+//   prepare         before the shadow maps (the environment's prefilter)
+//   indirect        after the G-buffer: fill the indirect term (every pixel) and set
+//                   ctx.indirectWritten; a pass finding it already set leaves it alone
+//   beforeLighting  screen-space inputs of the lighting pass (SSAO sets ctx.ambientOcclusion)
+//   afterLighting   work on the lit HDR image (the sky, the volumetric march)
+// Each pass times its work under its own names (ctx.timer.scope) and reports the memory it holds
+// under the same names, so stats.json and the GPU debugger agree.
+#pragma once
+
+#include "gi/gl/timer.h"
+#include "gi/render/render_settings.h"
+#include "gi/util/progress.h"
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gi {
+
+class GPUScene;
+
+// A texture the previewers can show, with the mode that displays it sensibly.
+struct DebugView {
+    std::string name;
+    GLuint texture = 0;
+    GLenum target = GL_TEXTURE_2D;
+    int mode = 0;        // shared::kView*
+    int width = 0, height = 0;
+    float near = 0.0f, far = 1.0f, range = 1.0f;  // for depth linearisation
+    GLuint extra[2] = {0, 0};  // SH volumes: the G and B coefficient textures (texture holds R)
+    float scale = 1.0f;        // SH volumes: factor from stored values to radiance
+    int level = 0;             // mip shown (added to ViewParams::level), e.g. a prefiltered environment mip
+};
+
+// One timed pass of a frame: GPU ms of the newest finished frame and the memory it holds.
+struct PassStats {
+    std::string name;
+    double gpuMs = 0.0;
+    size_t memoryBytes = 0;
+};
+
+// Memory of one named volume or buffer a pass holds (stats.json "volumes").
+struct VolumeMemory {
+    std::string name;
+    std::string format;  // e.g. "64^3 RGBA16F, 7 mips"
+    size_t bytes = 0;
+};
+
+// A shadow map the renderer drew this frame, for passes that test light visibility (VCT
+// injection, the volumetric march). depth is 0 for lights that cast no shadows.
+struct ShadowMapView {
+    GLuint depth = 0;
+    bool cube = false;          // point lights: a cube map of distance / far
+    glm::mat4 viewProj{1.0f};   // 2D maps
+    float far = 1.0f;           // cube maps
+};
+
+struct FrameContext {
+    const FrameSettings& settings;
+    const GPUScene& scene;
+    glm::mat4 view, proj, viewProj, invViewProj;
+    GLuint albedo, normal, material, emissive, depth;  // the G-buffer
+    GLuint indirect;          // RGBA16F image: irradiance / pi, written by the indirect stage
+    GLuint indirectSpecular;  // RGBA16F image: specular radiance (cleared to 0 before the stage)
+    GLuint hdr;               // RGBA16F lit image (afterLighting updates it in place)
+    const std::vector<ShadowMapView>& shadows;  // one per light, as settings.lights
+    int shadowSize;           // texels per side of the 2D shadow maps
+    int width, height;
+    gl::GpuTimer& timer;
+    const ProgressSink& progress;  // hears long steps (the environment prefilter)
+    // Changes to this pass's inputs since the frame it last completed (the OR of the cost tags of
+    // the changed fields, gi/preset/reflect.h diff(); every bit on the first frame). Passes
+    // rebuild what the bits say, never by comparing fields themselves.
+    uint8_t changes = 0;
+
+    // Written by the passes for the stages after them.
+    bool indirectWritten = false;
+    GLuint ambientOcclusion = 0;  // R8 texture multiplying the indirect term (white when none)
+    GLuint brdfLUT = 0;           // split-sum table of the lighting pass's specular (0: none)
+};
+
+class Pass {
+public:
+    virtual ~Pass() = default;
+    virtual void prepare(FrameContext&) {}
+    virtual void indirect(FrameContext&) {}
+    virtual void beforeLighting(FrameContext&) {}
+    virtual void afterLighting(FrameContext&) {}
+
+    virtual std::vector<DebugView> debugViews() const { return {}; }
+    // Memory held by the pass of that timer name (0 for names it does not own).
+    virtual size_t passMemory(const std::string& pass) const = 0;
+    virtual size_t memoryBytes() const = 0;
+    virtual std::vector<VolumeMemory> volumeMemory() const { return {}; }
+    // The timer names it reports when active with these settings (tests check stats.json).
+    virtual std::vector<std::string> passNames(const FrameSettings& fs) const = 0;
+    // Rebuilds its programs from disk; a failure keeps the old ones and appends the log.
+    virtual bool reloadShaders(std::string& log) = 0;
+};
+
+// One registered pass: what the section list declares about it.
+struct PassInfo {
+    std::string_view name;  // its settings section, e.g. "lpv"
+    PassRole role;
+    std::unique_ptr<Pass> (*create)();
+    size_t (*estimateBytes)(const FrameSettings&);
+    void (*checkTime)(const FrameSettings&);        // null when the pass has no long work
+    std::string (*notes)(const FrameSettings&);     // null when it never has any
+    uint8_t (*changes)(const FrameSettings& before, const FrameSettings& after);  // diff of its section
+};
+
+// Every pass, in the order of the section list.
+const std::vector<PassInfo>& passRegistry();
+// The entry of that name, or null.
+const PassInfo* findPass(std::string_view name);
+// Whether the pass runs in a frame with these settings: effects always, a technique when chosen.
+bool passActive(const PassInfo& info, const FrameSettings& fs);
+
+}  // namespace gi
