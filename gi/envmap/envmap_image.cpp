@@ -1,5 +1,7 @@
 #include "gi/envmap/envmap_image.h"
 
+#include "common/shared.h"
+
 #include "gi/render/image.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
@@ -18,7 +20,7 @@ namespace gi {
 
 namespace {
 
-constexpr float kPi = glm::pi<float>();
+using shared::kPi;
 
 glm::vec3 rotateY(const glm::vec3& d, float deg) {
     float a = glm::radians(deg), c = std::cos(a), s = std::sin(a);

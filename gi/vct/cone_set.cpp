@@ -1,5 +1,7 @@
 #include "gi/vct/cone_set.h"
 
+#include "common/shared.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,7 +9,7 @@ namespace gi {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
+using shared::kPi;
 
 glm::vec3 fromPolar(float cosTheta, float phi) {
     float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));

@@ -384,7 +384,7 @@ void VCT::setTraceUniforms(const gl::Program& p, const VCTSettings& s) const {
     p.set("uNudge", s.nudge);
     p.set("uStepMultiplier", s.stepMultiplier);
     const VoxelBox& outer = mLevels.back().box;
-    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : outer.extent(mResolution) * 1.7320508f;
+    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : outer.extent(mResolution) * shared::kSqrt3;
     p.set("uMaxDistance", maxDistance);
 }
 
@@ -445,7 +445,7 @@ void VCT::trace(const FrameContext& ctx) {
     mTraceProg.use();
     setTraceUniforms(mTraceProg, s);
     setGridUniforms(mTraceProg, mLevels[0]);
-    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : mLevels.back().box.extent(mResolution) * 1.7320508f;
+    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : mLevels.back().box.extent(mResolution) * shared::kSqrt3;
     mTraceProg.set("uOcclusionDistance", s.vaoDistance > 0.0f ? s.vaoDistance : maxDistance);
     mTraceProg.set("uVAO", s.vao ? 1 : 0);
     mTraceProg.set("uVAOStrength", s.vaoStrength);

@@ -3,6 +3,7 @@
 #include "gi/render/strokes.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
+#include "vct/vct_shared.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -159,10 +160,8 @@ std::vector<ConeGlyph> vctConeGlyphs(const VCTSettings& s, const glm::vec3& p, c
                                      float roughness, float voxelSize) {
     std::vector<ConeGlyph> glyphs;
     glm::mat3 frame = vctTangentFrame(n);
-    // trace.glsl traceCone: the march starts nudge voxel diagonals out, over max(n.w, 0.25).
-    auto start = [&](const glm::vec3& dir) {
-        return s.nudge * voxelSize * 1.7320508f / std::max(glm::dot(n, dir), 0.25f);
-    };
+    // Where trace.glsl's traceCone starts its march.
+    auto start = [&](const glm::vec3& dir) { return vct::vctConeStart(s.nudge, voxelSize, glm::dot(n, dir)); };
     ConeSet set = makeConeSet(s);
     for (const Cone& c : set.cones) {
         ConeGlyph g;

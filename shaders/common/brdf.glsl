@@ -1,8 +1,7 @@
 // Lambert diffuse and GGX specular (common/ggx.h, shared with the path tracer), as in
 // Filament's and pbrt's standard model. Roughness is perceptual
 // (alpha = roughness^2), clamped so a roughness of 0 does not make a delta lobe.
-const float kPi = 3.14159265358979;
-
+#include "common/shared.h"
 #include "common/ggx.h"
 
 // BRDF times cos(theta_l) for one light direction. Returns radiance per unit irradiance.

@@ -1,26 +1,26 @@
 // The GGX specular terms, shared by C++ (the path tracer) and GLSL (direct light), so the
 // reference and the raster pipeline evaluate the very same BRDF: Trowbridge-Reitz D,
 // height-correlated Smith visibility, Schlick Fresnel, and Smith G1 for sampling visible normals.
+#include "common/shared.h"
 #ifdef __cplusplus
 #pragma once
 #include <glm/glm.hpp>
 #include <cmath>
 namespace gi::ggx {
+using gi::shared::kPi;
 using glm::vec3;
 using std::pow;
 using std::sqrt;
 inline float max(float a, float b) { return a > b ? a : b; }
 #define GI_GGX_FUNC inline
-#define GI_GGX_PI 3.14159265358979f
 #else
 #define GI_GGX_FUNC
-#define GI_GGX_PI 3.14159265358979
 #endif
 
 GI_GGX_FUNC float D_GGX(float NoH, float a) {
     float a2 = a * a;
     float d = NoH * NoH * (a2 - 1.0f) + 1.0f;
-    return a2 / (GI_GGX_PI * d * d);
+    return a2 / (kPi * d * d);
 }
 
 GI_GGX_FUNC float V_SmithGGXCorrelated(float NoV, float NoL, float a) {

@@ -12,6 +12,10 @@ inline float clamp(float x, float lo, float hi) { return std::min(std::max(x, lo
 #define GI_FUNC
 #endif
 
+// The constants of the maths, once: every shader and the host code use these.
+GI_CONST float kPi = 3.14159265358979f;
+GI_CONST float kSqrt3 = 1.7320508f;  // the diagonal of a unit cube
+
 // Texture units of the lighting and composite passes.
 GI_CONST int kUnitAlbedo = 0;
 GI_CONST int kUnitNormal = 1;

@@ -1,7 +1,7 @@
 // Environment map helpers shared by the environment passes: the latlong convention of
 // gi/envmap/envmap_image.h (latLongUV), GL cube face directions, the Hammersley sequence and
 // GGX importance sampling (Karis 2013), and the mip of a prefiltered chain for a roughness.
-const float kEnvPi = 3.14159265358979;
+#include "common/shared.h"
 
 vec3 envRotateY(vec3 d, float deg) {
     float a = radians(deg), c = cos(a), s = sin(a);
@@ -10,7 +10,7 @@ vec3 envRotateY(vec3 d, float deg) {
 
 vec2 latLongUV(vec3 dir, float rotationDeg) {
     vec3 d = envRotateY(dir, -rotationDeg);
-    return vec2(0.5 + atan(d.x, -d.z) / (2.0 * kEnvPi), acos(clamp(d.y, -1.0, 1.0)) / kEnvPi);
+    return vec2(0.5 + atan(d.x, -d.z) / (2.0 * kPi), acos(clamp(d.y, -1.0, 1.0)) / kPi);
 }
 
 // GL's direction through texel (x, y) of cube face f (+X -X +Y -Y +Z -Z) of size n.
@@ -47,7 +47,7 @@ mat3 envFrame(vec3 n) {
 
 // A GGX half vector about +z for alpha = roughness^2.
 vec3 sampleGGX(vec2 xi, float a) {
-    float phi = 2.0 * kEnvPi * xi.x;
+    float phi = 2.0 * kPi * xi.x;
     float cosTheta = sqrt((1.0 - xi.y) / (1.0 + (a * a - 1.0) * xi.y));
     float sinTheta = sqrt(1.0 - cosTheta * cosTheta);
     return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);

@@ -26,7 +26,7 @@ uniform vec3 uSH[9];
 
 float sourceMip(float pdf) {
     float saSample = 1.0 / (float(uSamples) * max(pdf, 1e-8));
-    float saTexel = 4.0 * kEnvPi / (6.0 * float(uSourceSize * uSourceSize));
+    float saTexel = 4.0 * kPi / (6.0 * float(uSourceSize * uSourceSize));
     return max(0.5 * log2(saSample / saTexel) + 1.0, 0.0);
 }
 
@@ -60,22 +60,22 @@ void main() {
             if (NoL <= 0.0) continue;
             float NoH = max(dot(N, H), 0.0);
             float a2 = a * a, d = NoH * NoH * (a2 - 1.0) + 1.0;
-            float pdf = a2 / (kEnvPi * d * d) / 4.0;  // D * NoH / (4 VoH) with V = N
+            float pdf = a2 / (kPi * d * d) / 4.0;  // D * NoH / (4 VoH) with V = N
             sum += textureLod(uSource, L, sourceMip(pdf)).rgb * NoL;
             total += NoL;
         } else if (uMode == 1) {
             // Uniform disk (concentric would stratify better; Hammersley already does).
-            float r = uDiskRadius * sqrt(xi.y), phi = 2.0 * kEnvPi * xi.x;
+            float r = uDiskRadius * sqrt(xi.y), phi = 2.0 * kPi * xi.x;
             vec3 L = normalize(frame * vec3(r * cos(phi), r * sin(phi), 1.0));
-            float area = kEnvPi * uDiskRadius * uDiskRadius;
+            float area = kPi * uDiskRadius * uDiskRadius;
             float cosL = dot(N, L);
             float pdf = cosL * cosL * cosL / area;  // disk density carried onto the sphere
             sum += textureLod(uSource, L, sourceMip(pdf)).rgb;
             total += 1.0;
         } else {
-            float r = sqrt(xi.y), phi = 2.0 * kEnvPi * xi.x;
+            float r = sqrt(xi.y), phi = 2.0 * kPi * xi.x;
             vec3 L = frame * vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - xi.y, 0.0)));
-            float pdf = max(dot(N, L), 1e-4) / kEnvPi;
+            float pdf = max(dot(N, L), 1e-4) / kPi;
             sum += textureLod(uSource, L, sourceMip(pdf)).rgb;
             total += 1.0;
         }

@@ -33,7 +33,7 @@ void main() {
     vec3 p = pos.xyz + n * uNudge * uCellSize;
     ivec3 c = ivec3(floor((p - uGridMin) / uCellSize));
     if (!insideGrid(c)) return;
-    vec4 lobe = shCosLobe(n) / 3.14159265358979;
+    vec4 lobe = shCosLobe(n) / kPi;
     int base = cellIndex(c) * 12;
     for (int k = 0; k < 4; ++k) {
         atomicAddFloat(base + k, lobe[k] * flux.r);

@@ -18,7 +18,6 @@ uniform vec4 uCascadeMinCell[4];  // xyz: grid minimum, w: cell size
 uniform float uIntensity;
 uniform float uDamping;
 
-const float kPi = 3.14159265358979;
 
 vec3 irradiance(int k, vec3 p, vec3 n) {
     vec3 g = (p - uCascadeMinCell[k].xyz) / uCascadeMinCell[k].w;

@@ -31,7 +31,6 @@ uniform bool uDepthCube;     // cube views: a depth cube (point shadow map) show
 in vec2 vUV;
 out vec4 oColor;
 
-const float kPiView = 3.14159265358979;
 
 vec3 cubeCross(vec2 uv, out bool inside) {
     // 4 x 3 cross, uv.y = 0 at the top: row 1 holds -X +Z +X -Z; +Y above +Z, -Y below, each
@@ -55,7 +54,7 @@ vec3 cubeCross(vec2 uv, out bool inside) {
 // The direction at latlong coordinates (v = 0 at the top): the inverse of latLongUV in
 // gi/envmap/envmap_image.h (u = 0.5 + atan2(d.x, -d.z) / 2 pi, v = acos(d.y) / pi), unrotated.
 vec3 latLongDirection(vec2 uv) {
-    float phi = (uv.x - 0.5) * 2.0 * kPiView, theta = uv.y * kPiView;
+    float phi = (uv.x - 0.5) * 2.0 * kPi, theta = uv.y * kPi;
     return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
 }
 
@@ -105,7 +104,7 @@ void main() {
             vec4 r = texture(uVolumeR, p), g = texture(uVolumeG, p), b = texture(uVolumeB, p);
             if (uSHComponent >= 0) c = vec3(r[uSHComponent], g[uSHComponent], b[uSHComponent]) * uScale;
             // Irradiance on a surface facing uDirection: light travelling along -uDirection.
-            else c = max(vec3(dot(r, shCosLobe(-uDirection)), dot(g, shCosLobe(-uDirection)), dot(b, shCosLobe(-uDirection))), 0.0) * uScale / kPiView;
+            else c = max(vec3(dot(r, shCosLobe(-uDirection)), dot(g, shCosLobe(-uDirection)), dot(b, shCosLobe(-uDirection))), 0.0) * uScale / kPi;
         } else {
             vec4 gv = texture(uVolumeR, p);
             c = vec3(uSHComponent >= 0 ? gv[uSHComponent] : clamp(shEval(gv, -uDirection), 0.0, 1.0));

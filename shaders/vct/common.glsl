@@ -8,8 +8,6 @@ uniform vec3 uGridMin;      // world position of the grid's corner (logical voxe
 uniform float uCellSize;    // world size of a voxel
 uniform ivec3 uWrapOffset;  // clipmap: texel = (voxel + offset) mod resolution
 
-const float kPi = 3.14159265358979;
-
 bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uResolution))); }
 ivec3 texelOf(ivec3 voxel) { return (voxel + uWrapOffset) % uResolution; }
 vec3 voxelCentre(ivec3 voxel) { return uGridMin + (vec3(voxel) + 0.5) * uCellSize; }

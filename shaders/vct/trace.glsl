@@ -108,7 +108,7 @@ bool sampleVoxels(vec3 p, float diameter, vec3 dir, out vec4 s) {
         // with steps of a diameter, the sample that would reach a far wall is often centred past it.
         if (m > (k + 1 == uLevelCount ? 0.5 * diameter : 0.0)) continue;
         s = sampleLevel(k, p, log2(max(diameter / uLevelMinCell[k].w, 1.0)), dir);
-        float band = 0.1 * extent;
+        float band = kVCTLevelBlend * extent;
         float e = clamp((m + band) / band, 0.0, 1.0);
         if (e > 0.0 && k + 1 < uLevelCount)
             s = mix(s, sampleLevel(k + 1, p, log2(max(diameter / uLevelMinCell[k + 1].w, 1.0)), dir), e);
@@ -122,10 +122,10 @@ bool sampleVoxels(vec3 p, float diameter, vec3 dir, out vec4 s) {
 vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, float occlusionDistance,
                out float occlusion) {
     float voxel = uLevelMinCell[0].w;
-    float t = uNudge * voxel * 1.7320508 / max(dot(n, dir), 0.25);
+    float t = vctConeStart(uNudge, voxel, dot(n, dir));
     vec4 acc = vec4(0.0);
     occlusion = 0.0;
-    for (int i = 0; i < 512 && t < maxDistance && acc.a < 0.99; ++i) {
+    for (int i = 0; i < kVCTMaxConeSteps && t < maxDistance && acc.a < kVCTOpaque; ++i) {
         float diameter = max(2.0 * tanHalf * t, voxel);
         vec4 s;
         if (!sampleVoxels(apex + dir * t, diameter, dir, s)) break;

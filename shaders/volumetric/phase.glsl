@@ -1,6 +1,7 @@
 // Phase functions of seed 004 and isotropic, p(cos theta) per steradian, theta between the
 // light's direction of travel and the scattered direction. The GLSL twin of gi/volumetric/phase.h
 // (see it for the seed's errors fixed here); the kPhase* values are EnumNames<PhaseFunction>'s order.
+#include "common/shared.h"
 const int kPhaseIsotropic = 0;
 const int kPhaseHenyeyGreenstein = 1;
 const int kPhaseSchlick = 2;
@@ -18,7 +19,7 @@ float phaseFunction(int f, float g, float k, float c) {
         float d = 1.0 - k * c;
         return kInv4Pi * (1.0 - k * k) / (d * d);
     }
-    if (f == kPhaseRayleigh) return 3.0 / (16.0 * 3.14159265358979) * (1.0 + c * c);
+    if (f == kPhaseRayleigh) return 3.0 / (16.0 * kPi) * (1.0 + c * c);
     if (f == kPhaseMieHazy) return kInv4Pi * (0.5 + 4.5 * pow(0.5 * (1.0 + c), 8.0));
     if (f == kPhaseMieMurky) return kInv4Pi * (0.5 + 16.5 * pow(0.5 * (1.0 + c), 32.0));
     return kInv4Pi;
