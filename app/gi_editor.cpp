@@ -36,6 +36,8 @@ int run(int argc, char** argv) {
                  "Open the Phase function window (the volumetric phase function as a polar plot) from the start");
     app.add_flag("--mips-panel", options.roughnessMips,
                  "Open the environment settings' Roughness mips panel (the prefiltered chain and a preview of one mip) from the start");
+    app.add_option("--previewer", options.previewers,
+                   "Show this previewer from the start (a name gi-render --views writes, e.g. environment.mips); repeatable");
     app.add_option("--reference", options.reference, "Start the Reference panel in this view")
         ->check(CLI::IsMember({"live", "reference", "toggle", "split", "heat"}));
     app.add_option("--reference-spp", options.referenceSPP, "Samples per pixel of the reference (overrides reference.spp)")

@@ -9,15 +9,12 @@
 #include "common/shared.h"
 #include "gi/envmap/environment.h"
 #include "gi/gl/debug.h"
-#include "gi/lpv/lpv.h"
 #include "gi/metrics/metrics.h"
 #include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
 #include "gi/util/progress.h"
 #include "gi/scene/camera.h"
-#include "gi/vct/vct_views.h"
-#include "gi/volumetric/phase_plot.h"
 
 #include <CLI/CLI.hpp>
 
@@ -96,82 +93,6 @@ gi::CachedReference referenceFor(const gi::Scene& scene, const gi::FrameSettings
         print(u);
         return true;
     });
-}
-
-// `text` (digits and '.') as seven-segment strokes, its bottom-left corner at (x, y), y up.
-std::vector<gi::Stroke> segmentText(const std::string& text, float x, float y, float height, const glm::vec4& colour) {
-    // Segments a (top) b c d e f g (middle), and which of them each digit lights.
-    static const char* lit[10] = {"abcdef", "bc", "abged", "abgcd", "fgbc", "afgcd", "afgedc", "abc", "abcdefg", "abcdfg"};
-    const float w = 0.5f * height, m = 0.5f * height, thickness = std::max(1.5f, height / 7.0f);
-    std::vector<gi::Stroke> strokes;
-    for (char ch : text) {
-        if (ch == '.') {
-            strokes.push_back({{x + 0.5f * thickness, y}, {x + 0.5f * thickness, y}, colour, thickness * 1.2f});
-            x += 2.0f * thickness;
-            continue;
-        }
-        if (ch < '0' || ch > '9') {
-            x += w + 2.0f * thickness;
-            continue;
-        }
-        for (const char* seg = lit[ch - '0']; *seg; ++seg) {
-            glm::vec2 a, b;
-            switch (*seg) {
-                case 'a': a = {0, height}, b = {w, height}; break;
-                case 'b': a = {w, height}, b = {w, m}; break;
-                case 'c': a = {w, m}, b = {w, 0}; break;
-                case 'd': a = {0, 0}, b = {w, 0}; break;
-                case 'e': a = {0, 0}, b = {0, m}; break;
-                case 'f': a = {0, m}, b = {0, height}; break;
-                default: a = {0, m}, b = {w, m}; break;
-            }
-            strokes.push_back({glm::vec2(x, y) + a, glm::vec2(x, y) + b, colour, thickness});
-        }
-        x += w + 2.0f * thickness;
-    }
-    return strokes;
-}
-
-// Every mip of the prefiltered environment as a latlong image (views/environment.mipN.png), and
-// all of them on one sheet (views/environment.mips.png, four to a row, mip 0 at the top left),
-// each labelled with its index (yellow) and roughness (white).
-void writeEnvironmentMips(const gi::Renderer& renderer, const fs::path& dir) {
-    const gi::Environment* envPass = renderer.activePass<gi::Environment>();
-    if (!envPass || !envPass->ready() || envPass->mips().empty()) return;
-    const gi::Environment& env = *envPass;
-    const std::vector<gi::Environment::MipInfo>& mips = env.mips();
-    const int tileW = 256, tileH = 128, gap = 4, columns = std::min(int(mips.size()), 4);
-    const int rows = (int(mips.size()) + columns - 1) / columns;
-    const int sheetW = columns * tileW + (columns - 1) * gap, sheetH = rows * tileH + (rows - 1) * gap;
-    std::vector<uint8_t> sheet(size_t(sheetW) * size_t(sheetH) * 4, 24);
-    for (size_t i = 3; i < sheet.size(); i += 4) sheet[i] = 255;
-    for (size_t m = 0; m < mips.size(); ++m) {
-        gi::DebugView view;
-        view.name = "environment.mip" + std::to_string(m);
-        view.texture = env.prefiltered();
-        view.target = GL_TEXTURE_CUBE_MAP;
-        view.mode = gi::shared::kViewCubeLatLong;
-        view.width = tileW;
-        view.height = tileH;
-        view.level = int(m);
-        std::vector<uint8_t> tile = renderer.renderViewImage(view, tileW, tileH);
-        gi::writePNG(dir / (view.name + ".png"), tileW, tileH, tile);
-        // Rows of the sheet count from the top; the images from the bottom.
-        int x0 = int(m) % columns * (tileW + gap), y0 = sheetH - (int(m) / columns + 1) * tileH - int(m) / columns * gap;
-        for (int y = 0; y < tileH; ++y)
-            std::copy_n(&tile[size_t(y) * tileW * 4], size_t(tileW) * 4, &sheet[(size_t(y0 + y) * sheetW + size_t(x0)) * 4]);
-        char roughness[16];
-        std::snprintf(roughness, sizeof roughness, "%.2f", double(mips[m].roughness));
-        const float h = 12.0f, top = float(y0 + tileH) - 6.0f - h, left = float(x0) + 6.0f;
-        gi::fillPolygon(sheet, sheetW, sheetH,
-                        {{left - 3, top - 4}, {left + 66, top - 4}, {left + 66, top + h + 4}, {left - 3, top + h + 4}},
-                        {0, 0, 0, 0.55f});
-        std::vector<gi::Stroke> label = segmentText(std::to_string(m), left, top, h, {1.0f, 0.85f, 0.2f, 1.0f});
-        std::vector<gi::Stroke> value = segmentText(roughness, left + 28.0f, top, h, {1, 1, 1, 1});
-        label.insert(label.end(), value.begin(), value.end());
-        gi::drawStrokes(sheet, sheetW, sheetH, label);
-    }
-    gi::writePNG(dir / "environment.mips.png", sheetW, sheetH, sheet);
 }
 
 gi::json referenceStats(const gi::CachedReference& ref, const gi::ReferenceSettings& rs) {
@@ -299,33 +220,20 @@ int run(int argc, char** argv) {
             h = std::max(1, int(float(h) * scale));
             gi::writePNG(out / "views" / (v.name + ".png"), w, h, renderer.renderViewImage(v, w, h));
         }
-        if (frame.technique == "vct") {
-            // The voxels from the camera (the finest level holding its target): albedo, and the radiance the cones trace.
-            gi::VoxelView voxels;
-            gi::VoxelViewParams vp;
-            vp.viewProj = gi::projectionMatrix(frame.camera, float(width) / float(height)) * gi::viewMatrix(frame.camera);
-            std::vector<gi::VoxelGridView> grids = gi::voxelGrids(renderer.debugViews(), frame, scene.bounds);
-            vp.level = gi::finestLevelHolding(grids, frame.camera.target);
-            gi::writePNG(out / "views" / "vct.voxels.png", width, height, voxels.renderImage(grids, vp, width, height));
-            vp.source = gi::VoxelViewSource::Radiance;
-            gi::writePNG(out / "views" / "vct.voxels.radiance.png", width, height, voxels.renderImage(grids, vp, width, height));
-            // The cone set traced at the centre pixel, over the final image (as the editor draws it).
-            gi::SurfacePick pick;
-            if (gi::pickSurface(renderer, frame.camera, {width / 2, height / 2}, pick)) {
-                float voxel = gi::vctLevels(frame.vct, scene.bounds.min, scene.bounds.max, frame.camera.eye).front().cellSize;
-                std::vector<gi::ConeGlyph> glyphs =
-                    gi::vctConeGlyphs(frame.vct, pick.position, pick.normal, frame.camera.eye, pick.roughness, voxel);
+        // Each active pass's previewers: pictures of their own, and overlays drawn over the image
+        // (at the centre pixel where they need a surface to point at).
+        gi::PreviewContext preview = renderer.previewContext(frame, glm::ivec2(width / 2, height / 2));
+        for (const gi::Previewer& p : renderer.previewers(frame)) {
+            if (p.image) {
+                gi::PreviewImage img = p.image(preview);
+                if (img.width > 0) gi::writePNG(out / "views" / (p.name + ".png"), img.width, img.height, img.rgba);
+            } else if (p.overlay) {
+                std::vector<gi::GlyphLine> lines = p.overlay(preview);
+                if (lines.empty()) continue;
                 std::vector<uint8_t> image = renderer.readLDR();
-                gi::drawGlyphLines(image, width, height, vp.viewProj, gi::coneGlyphLines(glyphs, 12.0f * voxel));
-                gi::writePNG(out / "views" / "vct.cones.png", width, height, image);
+                gi::drawGlyphLines(image, width, height, preview.viewProj, lines);
+                gi::writePNG(out / "views" / (p.name + ".png"), width, height, image);
             }
-        }
-        if (frame.environment.enabled) writeEnvironmentMips(renderer, out / "views");
-        if (frame.volumetric.enabled) {
-            // The phase function as a polar plot (linear), light travelling along +x.
-            const int plotSize = 256;
-            gi::writePNG(out / "views" / "volumetric.phase.png", plotSize, plotSize,
-                         gi::phasePlotImage(gi::phaseParams(frame.volumetric), plotSize, false));
         }
     }
     if (reference || score) {

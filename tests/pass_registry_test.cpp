@@ -167,5 +167,55 @@ TEST_F(PassRegistryGL, CostTagsDecideWhatIsRebuilt) {
     EXPECT_EQ(dynamic_cast<const VCT*>(r.technique())->resolution(), 48);
 }
 
+// Every active pass's previewers draw something: images with more than a flat colour, overlays
+// lines inside the frame (the cone set needs a surface at the focus).
+TEST_F(PassRegistryGL, PreviewersDrawWhatTheyName) {
+    Scene scene = loadScene("cornell");
+    std::set<std::string> seen;
+    for (const char* technique : {"lpv", "vct"}) {
+        Preset p;
+        p.header.technique.name = technique;
+        p.lpv.gridResolution = 16;
+        p.vct.gridResolution = 32;
+        p.volumetric.enabled = true;
+        p.volumetric.density = 0.2f;
+        p.environment.enabled = true;
+        p.environment.file = "builtin:sky";
+        p.environment.cubeSize = 16;
+        p.environment.samples = 4;
+        Renderer r;
+        r.setScene(scene);
+        FrameSettings fs = frameSettings(p, scene, 64, 48);
+        r.render(fs);
+        PreviewContext ctx = r.previewContext(fs, glm::ivec2(32, 24));
+        ASSERT_TRUE(ctx.focus) << "the centre of the Cornell box is a surface";
+        for (const Previewer& pv : r.previewers(fs)) {
+            seen.insert(pv.name);
+            ASSERT_NE(bool(pv.image), bool(pv.overlay)) << pv.name << ": exactly one of image and overlay";
+            if (pv.image) {
+                PreviewImage img = pv.image(ctx);
+                ASSERT_GT(img.width, 0) << pv.name;
+                ASSERT_EQ(img.rgba.size(), size_t(img.width) * size_t(img.height) * 4) << pv.name;
+                std::set<uint32_t> colours;
+                for (size_t i = 0; i < img.rgba.size(); i += 4)
+                    colours.insert(uint32_t(img.rgba[i]) << 16 | uint32_t(img.rgba[i + 1]) << 8 | img.rgba[i + 2]);
+                EXPECT_GT(colours.size(), 4u) << pv.name << " draws a flat image";
+            } else {
+                std::vector<GlyphLine> lines = pv.overlay(ctx);
+                EXPECT_FALSE(lines.empty()) << pv.name;
+                int inside = 0;
+                for (const GlyphLine& l : lines) {
+                    glm::vec4 c = ctx.viewProj * glm::vec4(l.a, 1.0f);
+                    inside += c.w > 0.0f && std::abs(c.x) <= c.w * 1.01f && std::abs(c.y) <= c.w * 1.01f;
+                }
+                EXPECT_GT(inside, 0) << pv.name << " draws nothing in view";
+            }
+        }
+    }
+    for (const char* name : {"lpv.cascades", "vct.voxels", "vct.voxels.radiance", "vct.cones", "volumetric.phase", "environment.mips",
+                             "environment.mip0"})
+        EXPECT_TRUE(seen.count(name)) << name;
+}
+
 }  // namespace
 }  // namespace gi

@@ -119,13 +119,13 @@ TEST_F(VCTPick, PickSurfaceReconstructsTheGBufferPoint) {
     renderer.setScene(scene);
     renderer.render(fs);
     SurfacePick pick;
-    ASSERT_TRUE(pickSurface(renderer, fs.camera, {kSize / 2, kSize / 2}, pick));
+    ASSERT_TRUE(renderer.pickSurface({kSize / 2, kSize / 2}, pick));
     EXPECT_NEAR(pick.position.x, 0.0f, 0.03f);
     EXPECT_NEAR(pick.position.y, 0.75f, 0.03f);
     EXPECT_NEAR(pick.position.z, 0.75f, 0.01f);
     EXPECT_GT(pick.normal.z, 0.99f);
     EXPECT_NEAR(pick.roughness, 1.0f, 0.01f);
-    EXPECT_FALSE(pickSurface(renderer, fs.camera, {kSize / 2, kSize - 1}, pick)) << "the top row sees the sky";
+    EXPECT_FALSE(renderer.pickSurface({kSize / 2, kSize - 1}, pick)) << "the top row sees the sky";
 }
 
 // Glyph strokes land where their world points project: a stroke across the image colours the

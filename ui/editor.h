@@ -8,12 +8,14 @@
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/scene.h"
-#include "gi/vct/vct_views.h"
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
+#include "ui/pass_panel.h"
 #include "ui/reference_panel.h"
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,7 @@ struct EditorOptions {
     std::string voxelView;         // VCT: albedo, normal, emission or radiance shows that voxel view in the viewport
     bool voxelWindow = false;      // the voxel view in its own window instead of the viewport
     bool coneOverlay = true;       // VCT: the cone set at the picked pixel (at first the centre) over the viewport
+    std::vector<std::string> previewers;  // previewers (gi-render --views names) shown from the start
     bool phasePlot = false;        // the Phase function window open from the start (it also opens when volumetric is on)
     bool roughnessMips = false;    // the environment section's Roughness mips panel open, and scrolled to, from the start
 };
@@ -59,37 +62,22 @@ private:
     std::string mPathField;             // the Presets panel's path (Open, Save As)
     std::filesystem::path mConfirmOverwrite;  // Save As target the user was warned exists
     bool mDirty = false;
-    bool mShowCascades = true;  // LPV cascade boxes drawn over the viewport
-    // VCT previewers (vctPanel): the voxel view and the cone set at a picked pixel.
-    enum class VoxelDisplay { Off, Viewport, Window };
-    VoxelDisplay mVoxelDisplay = VoxelDisplay::Off;
-    VoxelViewParams mVoxelParams;
-    bool mVoxelAutoLevel = true;    // the finest level holding the camera's target
-    VoxelViewParams voxelParams(const FrameSettings& fs, const std::vector<VoxelGridView>& grids, float aspect) const;
-    bool mShowCones = true;
-    float mConeLength = 12.0f;      // drawn cone length, in level-0 voxels
-    glm::vec2 mPickUV{0.5f};        // picked point of the viewport, 0..1 from the bottom left
+    // Previewers of the active passes (Renderer::previewers): which are shown (overlays over
+    // the viewport, images in windows), by name; overlays start shown.
+    std::map<std::string, bool> mShowPreviewer;
+    float mOverlayScale = 1.0f;     // glyph size relative to the previewers' default
+    glm::vec2 mPickUV{0.5f};        // the focus pixel of the viewport, 0..1 from the bottom left
     bool mPickPending = true;       // read the G-buffer at mPickUV after this frame's render
-    struct ConePick {
-        bool valid = false;
-        glm::ivec2 pixel{0};
-        SurfacePick surface;
-    } mPick;
-    uint64_t mPickGeneration = 0;   // mSceneGeneration the pick was read in
-    // Volumetric: the phase function's polar plot (phaseWindow), opened whenever volumetric
-    // lighting is switched on (and at start when the preset has it on).
-    bool mShowPhase = false;
-    bool mPhaseLog = false;         // the plot's radius on the log scale of gi/volumetric/phase_plot.h
-    bool mPhaseOthers = true;       // the other five functions as faint curves
-    bool mVolumetricWasOn = false;  // volumetric.enabled last frame
-    // Environment: the Roughness mips panel (roughnessMipsPanel) and its preview of one mip.
-    bool mOpenMips = false;         // open the environment section and the panel at start
-    int mScrollToMips = 0;          // frames left in which the settings window scrolls to the panel
-    int mMipSelected = 0;
-    bool mMipLatLong = true;        // the preview as a latlong image, else as the cube's cross
-    float mMipExposure = 0.0f;      // EV
-    gl::Texture mMipImage;          // the preview, rendered by Renderer::drawView at the panel's width
-    gl::Framebuffer mMipFBO;
+    glm::ivec2 mFocusPixel{0};
+    std::optional<SurfacePick> mFocus;  // the surface at the focus pixel, for overlays that point at one
+    uint64_t mPickGeneration = 0;   // mSceneGeneration the focus was read in
+    struct PreviewWindow {
+        gl::Texture image;
+        uint64_t generation = ~uint64_t(0);  // mLiveGeneration the image was made in
+    };
+    std::map<std::string, PreviewWindow> mPreviewWindows;
+    // The passes' own panels (ui/pass_panels.cpp), by section.
+    std::vector<std::pair<std::string_view, std::unique_ptr<PassPanel>>> mPanels;
     std::string mLoadedScene;           // header.scene that mScene came from
     Scene mScene;
     Renderer mRenderer;
@@ -99,9 +87,6 @@ private:
     uint64_t mSceneGeneration = 0;  // grows with each installed scene
     uint64_t mLiveGeneration = 0;   // grows with each change that can alter the live image
     gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
-    VoxelView mVoxelView;
-    gl::Texture mVoxelImage;            // the voxel view's window
-    gl::Framebuffer mVoxelFBO;
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
     std::string mGLRenderer;
@@ -125,15 +110,13 @@ private:
     uint8_t cameraTools();  // beside the generated camera fields
     uint8_t lightsPanel();
     void statsPanel();
-    void drawCascadeOverlay();
-    void vctPanel();
-    void voxelWindow();
-    void volumetricPanel();
-    uint8_t roughnessMipsPanel();
-    void phaseWindow();
-    std::vector<VoxelGridView> voxelGrids(const FrameSettings& fs) const;
-    void readConePick();
-    void drawConeOverlay();
+    PanelContext panelContext();
+    PassPanel* panel(std::string_view section) const;
+    // Under each pass's section: its notes and the switches of its previewers.
+    void passExtras(std::string_view section, const FrameSettings& fs, const std::vector<Previewer>& previewers);
+    void readFocus();
+    void drawOverlays(const FrameSettings& fs, const std::vector<Previewer>& previewers);
+    void previewerWindows(const FrameSettings& fs, const std::vector<Previewer>& previewers);
 };
 
 }  // namespace gi::ui

@@ -1,5 +1,7 @@
 #include "gi/envmap/environment.h"
 
+#include "gi/render/strokes.h"
+
 #include "common/shared.h"
 #include "gi/preset/reflect.h"
 #include "gi/util/error.h"
@@ -261,6 +263,62 @@ std::vector<std::string> Environment::passNames(const FrameSettings& fs) const {
     if (fs.technique == TechniqueChoice::kNone) names.push_back("environment.shade");
     if (s.skybox) names.push_back("environment.sky");
     return names;
+}
+
+namespace {
+
+constexpr int kMipTileWidth = 256, kMipTileHeight = 128;
+
+}  // namespace
+
+std::vector<Previewer> Environment::previewers(const FrameSettings& fs) const {
+    std::vector<Previewer> out;
+    if (!fs.environment.enabled || !ready() || mMips.empty()) return out;
+    auto tile = [this](const PreviewContext& ctx, int m) {
+        DebugView view;
+        view.name = "environment.mip" + std::to_string(m);
+        view.texture = prefiltered();
+        view.target = GL_TEXTURE_CUBE_MAP;
+        view.mode = shared::kViewCubeLatLong;
+        view.width = kMipTileWidth;
+        view.height = kMipTileHeight;
+        view.level = m;
+        return ctx.renderView(view, kMipTileWidth, kMipTileHeight);
+    };
+    for (int m = 0; m < int(mMips.size()); ++m) {
+        char what[96];
+        std::snprintf(what, sizeof what, "Mip %d of the prefiltered chain (roughness %.2f) as a latlong image", m,
+                      double(mMips[size_t(m)].roughness));
+        out.push_back({"environment.mip" + std::to_string(m), what,
+                       [tile, m](const PreviewContext& ctx) { return PreviewImage{kMipTileWidth, kMipTileHeight, tile(ctx, m)}; },
+                       {}});
+    }
+    auto sheet = [this, tile](const PreviewContext& ctx) {
+        const int count = int(mMips.size()), tileW = kMipTileWidth, tileH = kMipTileHeight, gap = 4;
+        const int columns = std::min(count, 4), rows = (count + columns - 1) / columns;
+        PreviewImage img{columns * tileW + (columns - 1) * gap, rows * tileH + (rows - 1) * gap, {}};
+        img.rgba.assign(size_t(img.width) * size_t(img.height) * 4, 24);
+        for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+        for (int m = 0; m < count; ++m) {
+            std::vector<uint8_t> t = tile(ctx, m);
+            // Rows of the sheet count from the top; the images from the bottom.
+            int x0 = m % columns * (tileW + gap), y0 = img.height - (m / columns + 1) * tileH - m / columns * gap;
+            for (int y = 0; y < tileH; ++y)
+                std::copy_n(&t[size_t(y) * tileW * 4], size_t(tileW) * 4, &img.rgba[(size_t(y0 + y) * img.width + size_t(x0)) * 4]);
+            char roughness[16];
+            std::snprintf(roughness, sizeof roughness, "%.2f", double(mMips[size_t(m)].roughness));
+            const float h = 12.0f, top = float(y0 + tileH) - 6.0f - h, left = float(x0) + 6.0f;
+            fillPolygon(img.rgba, img.width, img.height,
+                        {{left - 3, top - 4}, {left + 66, top - 4}, {left + 66, top + h + 4}, {left - 3, top + h + 4}}, {0, 0, 0, 0.55f});
+            std::vector<Stroke> label = segmentText(std::to_string(m), left, top, h, {1.0f, 0.85f, 0.2f, 1.0f});
+            std::vector<Stroke> value = segmentText(roughness, left + 28.0f, top, h, {1, 1, 1, 1});
+            label.insert(label.end(), value.begin(), value.end());
+            drawStrokes(img.rgba, img.width, img.height, label);
+        }
+        return img;
+    };
+    out.push_back({"environment.mips", "Every mip of the prefiltered chain on one sheet, labelled with its index and roughness", sheet, {}});
+    return out;
 }
 
 std::unique_ptr<Pass> EnvironmentSettings::createPass() { return std::make_unique<Environment>(); }

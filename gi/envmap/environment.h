@@ -106,6 +106,10 @@ public:
     size_t passMemory(const std::string& pass) const override { return pass == "environment.prefilter" ? memoryBytes() : 0; }
     std::vector<std::string> passNames(const FrameSettings& fs) const override;
     std::vector<DebugView> debugViews() const override;
+    // environment.mipN: each mip of the prefiltered chain as a latlong image; environment.mips:
+    // all of them on one sheet, four to a row, mip 0 at the top left, each labelled with its
+    // index (yellow) and roughness (white).
+    std::vector<Previewer> previewers(const FrameSettings& fs) const override;
     bool reloadShaders(std::string& log) override;
 
     // The chain the settings give: its mip count (one per mipRoughness entry, at most the cube's

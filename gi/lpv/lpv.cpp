@@ -433,6 +433,26 @@ std::vector<std::string> LPV::passNames(const FrameSettings&) const {
     return {"lpv.rsm", "lpv.inject", "lpv.geometry", "lpv.propagate", "lpv.shade"};
 }
 
+std::vector<Previewer> LPV::previewers(const FrameSettings&) const {
+    auto boxes = [](const PreviewContext& ctx) {
+        std::vector<GlyphLine> lines;
+        if (!ctx.sceneBounds.valid()) return lines;
+        const glm::vec4 colours[4] = {{1.0f, 0.86f, 0.24f, 0.8f}, {0.31f, 0.86f, 1.0f, 0.8f}, {1.0f, 0.43f, 0.78f, 0.8f},
+                                      {0.59f, 1.0f, 0.47f, 0.8f}};
+        std::vector<CascadeBox> cascades =
+            lpvCascades(ctx.settings.lpv, ctx.sceneBounds.min, ctx.sceneBounds.max, ctx.settings.camera.eye);
+        for (size_t k = 0; k < cascades.size(); ++k) {
+            auto corner = [&](int i) { return cascades[k].min + cascades[k].extent * glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1); };
+            // The 12 edges: corners that differ in one bit.
+            for (int a = 0; a < 8; ++a)
+                for (int bit = 1; bit < 8; bit <<= 1)
+                    if (!(a & bit)) lines.push_back({corner(a), corner(a | bit), colours[k % 4], 1.5f * ctx.overlayScale});
+        }
+        return lines;
+    };
+    return {{"lpv.cascades", "The cascades' boxes: each grid's extent in the scene", {}, boxes}};
+}
+
 std::unique_ptr<Pass> LPVSettings::createPass() { return std::make_unique<LPV>(); }
 size_t LPVSettings::estimateBytes(const FrameSettings& fs) { return LPV::estimateBytes(fs); }
 std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLights(fs.lights); }

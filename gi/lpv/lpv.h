@@ -74,6 +74,8 @@ public:
 
     void indirect(FrameContext& ctx) override;
     std::vector<DebugView> debugViews() const override;
+    // lpv.cascades: each cascade's box over the image.
+    std::vector<Previewer> previewers(const FrameSettings& fs) const override;
     size_t passMemory(const std::string& pass) const override;
     size_t memoryBytes() const override;
     std::vector<std::string> passNames(const FrameSettings& fs) const override;

@@ -16,11 +16,15 @@
 
 #include "gi/gl/timer.h"
 #include "gi/render/render_settings.h"
+#include "gi/render/strokes.h"
+#include "gi/scene/scene.h"
 #include "gi/util/progress.h"
 
 #include <glm/glm.hpp>
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -89,6 +93,44 @@ struct FrameContext {
     GLuint brdfLUT = 0;           // split-sum table of the lighting pass's specular (0: none)
 };
 
+// The surface under a pixel of the last frame, reconstructed from the G-buffer as the passes
+// see it (position, normal, roughness).
+struct SurfacePick {
+    glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f};
+    float roughness = 1.0f;
+};
+
+// What a previewer reads: the frame the renderer drew last.
+struct PreviewContext {
+    const FrameSettings& settings;
+    Bounds sceneBounds;
+    std::vector<DebugView> views;      // every active pass's views, as Renderer::debugViews
+    glm::mat4 viewProj{1.0f};          // the camera of the frame
+    int width = 0, height = 0;         // of the frame
+    std::optional<SurfacePick> focus;  // the surface the user points at (the editor's click, the runner's centre)
+    float overlayScale = 1.0f;         // size of overlay glyphs relative to their default (the editor's slider)
+    // Draws a view into a new RGBA8 image (bottom row first), as the buffer previewer shows it.
+    std::function<std::vector<uint8_t>(const DebugView&, int width, int height)> renderView;
+};
+
+// An RGBA8 picture, bottom row first (as GL reads back and writePNG takes).
+struct PreviewImage {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// A previewer a pass offers beside its debug views. gi-render --views writes each as
+// views/NAME.png; the editor lists them. Exactly one of the two functions is set.
+struct Previewer {
+    std::string name;         // e.g. "vct.cones"
+    std::string description;  // one line for the editor's tooltip
+    // A picture of its own (the voxels from the camera, the phase plot, the mip sheet); empty
+    // (width 0) when there is nothing to show this frame.
+    std::function<PreviewImage(const PreviewContext&)> image;
+    // World-space lines drawn over the final image (cone glyphs at the focus, cascade boxes).
+    std::function<std::vector<GlyphLine>(const PreviewContext&)> overlay;
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -98,6 +140,8 @@ public:
     virtual void afterLighting(FrameContext&) {}
 
     virtual std::vector<DebugView> debugViews() const { return {}; }
+    // Its previewers when active with these settings.
+    virtual std::vector<Previewer> previewers(const FrameSettings&) const { return {}; }
     // Memory held by the pass of that timer name (0 for names it does not own).
     virtual size_t passMemory(const std::string& pass) const = 0;
     virtual size_t memoryBytes() const = 0;

@@ -513,6 +513,46 @@ std::vector<DebugView> Renderer::debugViews() const {
     return v;
 }
 
+bool Renderer::pickSurface(glm::ivec2 px, SurfacePick& out) const {
+    GLuint depth = mDepth.id(), normal = mNormal.id(), material = mMaterial.id();
+    glm::ivec2 size(mWidth, mHeight);
+    if (!depth || size.x <= 0 || size.y <= 0) return false;
+    px = glm::clamp(px, glm::ivec2(0), size - 1);
+    float d = 1.0f, n[4] = {}, m[4] = {};
+    glGetTextureSubImage(depth, 0, px.x, px.y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof d, &d);
+    glGetTextureSubImage(normal, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof n, n);
+    glGetTextureSubImage(material, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof m, m);
+    glm::vec3 nn(n[0], n[1], n[2]);
+    if (d >= 1.0f || glm::length(nn) < 1e-3f) return false;
+    glm::mat4 inv = glm::inverse(projectionMatrix(mCamera, float(size.x) / float(size.y)) * viewMatrix(mCamera));
+    glm::vec2 uv = (glm::vec2(px) + 0.5f) / glm::vec2(size);
+    glm::vec4 w = inv * glm::vec4(uv * 2.0f - 1.0f, d * 2.0f - 1.0f, 1.0f);
+    out.position = glm::vec3(w) / w.w;
+    out.normal = glm::normalize(nn);
+    out.roughness = m[0];
+    return true;
+}
+
+std::vector<Previewer> Renderer::previewers(const FrameSettings& fs) const {
+    std::vector<Previewer> out;
+    for (const ActivePass& p : mPasses)
+        for (Previewer& pv : p.pass->previewers(fs)) out.push_back(std::move(pv));
+    return out;
+}
+
+PreviewContext Renderer::previewContext(const FrameSettings& fs, std::optional<glm::ivec2> focus) const {
+    PreviewContext ctx{fs};
+    ctx.sceneBounds = mScene ? mScene->bounds() : Bounds{};
+    ctx.views = debugViews();
+    ctx.width = mWidth;
+    ctx.height = mHeight;
+    if (mWidth > 0) ctx.viewProj = projectionMatrix(mCamera, float(mWidth) / float(mHeight)) * viewMatrix(mCamera);
+    SurfacePick pick;
+    if (focus && pickSurface(*focus, pick)) ctx.focus = pick;
+    ctx.renderView = [this](const DebugView& v, int w, int h) { return renderViewImage(v, w, h); };
+    return ctx;
+}
+
 std::vector<PassStats> Renderer::passStats() const {
     size_t shadowBytes = 0;
     for (auto& s : mShadows) shadowBytes += s.depth.bytes();

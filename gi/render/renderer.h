@@ -57,6 +57,12 @@ public:
     int width() const { return mWidth; }
     int height() const { return mHeight; }
     std::vector<DebugView> debugViews() const;
+    // Every active pass's previewers for these settings (the last frame's).
+    std::vector<Previewer> previewers(const FrameSettings& fs) const;
+    // The last frame as the previewers read it; `focus` is the pixel the user points at.
+    PreviewContext previewContext(const FrameSettings& fs, std::optional<glm::ivec2> focus) const;
+    // The surface under pixel `px` (y up) of the last frame; false where there is none (the sky).
+    bool pickSurface(glm::ivec2 px, SurfacePick& out) const;
     // Per-pass GPU ms (newest finished frame) and memory held.
     std::vector<PassStats> passStats() const;
     size_t memoryBytes() const;

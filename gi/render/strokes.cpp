@@ -125,4 +125,59 @@ void fillPolygon(std::vector<uint8_t>& rgba, int width, int height, const std::v
     }
 }
 
+void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm::mat4& viewProj,
+                    const std::vector<GlyphLine>& lines) {
+    GI_ASSERT(rgba.size() >= size_t(width) * height * 4, "drawGlyphLines: image too small");
+    // Pixel coordinates with y up (row 0 at the bottom, as the image is stored).
+    auto project = [&](const glm::vec3& p, glm::vec2& out) {
+        glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+        if (c.w <= 1e-4f) return false;
+        out = (glm::vec2(c) / c.w * 0.5f + 0.5f) * glm::vec2(width, height);
+        return true;
+    };
+    std::vector<Stroke> strokes;
+    strokes.reserve(lines.size());
+    for (const GlyphLine& l : lines) {
+        Stroke s;
+        if (!project(l.a, s.a) || !project(l.b, s.b)) continue;
+        s.colour = l.colour;
+        s.width = l.width;
+        strokes.push_back(s);
+    }
+    drawStrokes(rgba, width, height, strokes);
+}
+
+std::vector<Stroke> segmentText(const std::string& text, float x, float y, float height, const glm::vec4& colour) {
+    // Segments a (top) b c d e f g (middle), and which of them each digit lights.
+    static const char* lit[10] = {"abcdef", "bc", "abged", "abgcd", "fgbc", "afgcd", "afgedc", "abc", "abcdefg", "abcdfg"};
+    const float w = 0.5f * height, m = 0.5f * height, thickness = std::max(1.5f, height / 7.0f);
+    std::vector<Stroke> strokes;
+    for (char ch : text) {
+        if (ch == '.') {
+            strokes.push_back({{x + 0.5f * thickness, y}, {x + 0.5f * thickness, y}, colour, thickness * 1.2f});
+            x += 2.0f * thickness;
+            continue;
+        }
+        if (ch < '0' || ch > '9') {
+            x += w + 2.0f * thickness;
+            continue;
+        }
+        for (const char* seg = lit[ch - '0']; *seg; ++seg) {
+            glm::vec2 a, b;
+            switch (*seg) {
+                case 'a': a = {0, height}, b = {w, height}; break;
+                case 'b': a = {w, height}, b = {w, m}; break;
+                case 'c': a = {w, m}, b = {w, 0}; break;
+                case 'd': a = {0, 0}, b = {w, 0}; break;
+                case 'e': a = {0, 0}, b = {0, m}; break;
+                case 'f': a = {0, m}, b = {0, height}; break;
+                default: a = {0, m}, b = {w, m}; break;
+            }
+            strokes.push_back({glm::vec2(x, y) + a, glm::vec2(x, y) + b, colour, thickness});
+        }
+        x += w + 2.0f * thickness;
+    }
+    return strokes;
+}
+
 }  // namespace gi

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gi {
@@ -37,5 +38,22 @@ void drawPolyline(std::vector<uint8_t>& rgba, int width, int height, const std::
 // The polygon through `points` (even-odd rule), blended once.
 void fillPolygon(std::vector<uint8_t>& rgba, int width, int height, const std::vector<glm::vec2>& points,
                  const glm::vec4& colour);
+
+// A world-space stroke of a previewer overlay (cone glyphs, cascade boxes); a == b is a dot of diameter `width` pixels.
+struct GlyphLine {
+    glm::vec3 a{0.0f}, b{0.0f};
+    glm::vec4 colour{1.0f};  // straight RGBA, 0..1 (display-encoded)
+    float width = 1.0f;      // pixels
+};
+
+// Draws the strokes over an RGBA8 image (bottom row first, as GL reads it back) seen through
+// viewProj; alpha-blended, strokes behind the camera skipped. The projected strokes are drawn by
+// gi/render/strokes.h's drawStrokes.
+void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm::mat4& viewProj,
+                    const std::vector<GlyphLine>& lines);
+
+// `text` (digits and '.') as seven-segment strokes, its bottom-left corner at (x, y), y up: labels
+// of the previewer images (no font is at hand without ImGui).
+std::vector<Stroke> segmentText(const std::string& text, float x, float y, float height, const glm::vec4& colour);
 
 }  // namespace gi

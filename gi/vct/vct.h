@@ -92,6 +92,9 @@ public:
 
     void indirect(FrameContext& ctx) override;
     std::vector<DebugView> debugViews() const override;
+    // vct.voxels and vct.voxels.radiance (the grid seen from the camera), vct.cones (the cone set
+    // at the focus, overlaid); defined in vct_views.cpp beside what draws them.
+    std::vector<Previewer> previewers(const FrameSettings& fs) const override;
     size_t passMemory(const std::string& pass) const override;
     size_t memoryBytes() const override;
     std::vector<VolumeMemory> volumeMemory() const override;

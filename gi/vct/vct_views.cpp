@@ -221,52 +221,29 @@ std::vector<GlyphLine> coneGlyphLines(const std::vector<ConeGlyph>& glyphs, floa
     return lines;
 }
 
-bool pickSurface(const Renderer& renderer, const CameraSettings& camera, glm::ivec2 px, SurfacePick& out) {
-    std::vector<DebugView> views = renderer.debugViews();
-    auto texture = [&](const char* name) -> GLuint {
-        for (const DebugView& v : views)
-            if (v.name == name) return v.texture;
-        return 0;
+std::vector<Previewer> VCT::previewers(const FrameSettings&) const {
+    // The voxels from the camera, at the finest level holding its target.
+    auto voxels = [](VoxelViewSource source) {
+        return [source](const PreviewContext& ctx) {
+            VoxelViewParams vp;
+            vp.viewProj = ctx.viewProj;
+            vp.source = source;
+            std::vector<VoxelGridView> grids = voxelGrids(ctx.views, ctx.settings, ctx.sceneBounds);
+            vp.level = finestLevelHolding(grids, ctx.settings.camera.target);
+            return PreviewImage{ctx.width, ctx.height, VoxelView().renderImage(grids, vp, ctx.width, ctx.height)};
+        };
     };
-    GLuint depth = texture("depth"), normal = texture("normal"), material = texture("roughnessMetallic");
-    glm::ivec2 size(renderer.width(), renderer.height());
-    if (!depth || !normal || !material || size.x <= 0 || size.y <= 0) return false;
-    px = glm::clamp(px, glm::ivec2(0), size - 1);
-    float d = 1.0f, n[4] = {}, m[4] = {};
-    glGetTextureSubImage(depth, 0, px.x, px.y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof d, &d);
-    glGetTextureSubImage(normal, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof n, n);
-    glGetTextureSubImage(material, 0, px.x, px.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof m, m);
-    glm::vec3 nn(n[0], n[1], n[2]);
-    if (d >= 1.0f || glm::length(nn) < 1e-3f) return false;
-    glm::mat4 inv = glm::inverse(projectionMatrix(camera, float(size.x) / float(size.y)) * viewMatrix(camera));
-    glm::vec2 uv = (glm::vec2(px) + 0.5f) / glm::vec2(size);
-    glm::vec4 w = inv * glm::vec4(uv * 2.0f - 1.0f, d * 2.0f - 1.0f, 1.0f);
-    out.position = glm::vec3(w) / w.w;
-    out.normal = glm::normalize(nn);
-    out.roughness = m[0];
-    return true;
-}
-
-void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm::mat4& viewProj,
-                    const std::vector<GlyphLine>& lines) {
-    GI_ASSERT(rgba.size() >= size_t(width) * height * 4, "drawGlyphLines: image too small");
-    // Pixel coordinates with y up (row 0 at the bottom, as the image is stored).
-    auto project = [&](const glm::vec3& p, glm::vec2& out) {
-        glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
-        if (c.w <= 1e-4f) return false;
-        out = (glm::vec2(c) / c.w * 0.5f + 0.5f) * glm::vec2(width, height);
-        return true;
+    auto cones = [](const PreviewContext& ctx) {
+        if (!ctx.focus || !ctx.sceneBounds.valid()) return std::vector<GlyphLine>{};
+        const FrameSettings& fs = ctx.settings;
+        float voxel = vctLevels(fs.vct, ctx.sceneBounds.min, ctx.sceneBounds.max, fs.camera.eye).front().cellSize;
+        const SurfacePick& p = *ctx.focus;
+        std::vector<ConeGlyph> glyphs = vctConeGlyphs(fs.vct, p.position, p.normal, fs.camera.eye, p.roughness, voxel);
+        return coneGlyphLines(glyphs, kConeGlyphVoxels * ctx.overlayScale * voxel);
     };
-    std::vector<Stroke> strokes;
-    strokes.reserve(lines.size());
-    for (const GlyphLine& l : lines) {
-        Stroke s;
-        if (!project(l.a, s.a) || !project(l.b, s.b)) continue;
-        s.colour = l.colour;
-        s.width = l.width;
-        strokes.push_back(s);
-    }
-    drawStrokes(rgba, width, height, strokes);
+    return {{"vct.voxels", "The voxel albedo seen from the camera (the finest level holding its target)", voxels(VoxelViewSource::Albedo), {}},
+            {"vct.voxels.radiance", "The voxel radiance the cones trace, seen from the camera", voxels(VoxelViewSource::Radiance), {}},
+            {"vct.cones", "The diffuse and specular cones traced at the focus pixel", {}, cones}};
 }
 
 }  // namespace gi

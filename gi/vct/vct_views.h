@@ -111,30 +111,12 @@ struct ConeGlyph {
 std::vector<ConeGlyph> vctConeGlyphs(const VCTSettings& s, const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye,
                                      float roughness, float voxelSize);
 
-// A world-space stroke of a glyph drawing; a == b is a dot of diameter `width` pixels.
-struct GlyphLine {
-    glm::vec3 a{0.0f}, b{0.0f};
-    glm::vec4 colour{1.0f};  // straight RGBA, 0..1 (display-encoded)
-    float width = 1.0f;      // pixels
-};
 // The strokes that draw the glyphs drawn `length` long: each cone's axis, the aperture as a
 // circle at its end with two silhouette lines to the apex, and a dot where the march starts
 // (within the length). Diffuse cones cyan, more opaque the heavier; the specular cone orange.
 // The apex itself as a white dot with a dark rim.
 std::vector<GlyphLine> coneGlyphLines(const std::vector<ConeGlyph>& glyphs, float length);
-
-// The surface under pixel `px` of the renderer's last frame, reconstructed as trace.comp does
-// (depth, normal and roughness from the G-buffer). False where there is no surface (the sky).
-struct SurfacePick {
-    glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f};
-    float roughness = 1.0f;
-};
-bool pickSurface(const Renderer& renderer, const CameraSettings& camera, glm::ivec2 px, SurfacePick& out);
-
-// Draws the strokes over an RGBA8 image (bottom row first, as GL reads it back) seen through
-// viewProj; alpha-blended, strokes behind the camera skipped. The projected strokes are drawn by
-// gi/render/strokes.h's drawStrokes.
-void drawGlyphLines(std::vector<uint8_t>& rgba, int width, int height, const glm::mat4& viewProj,
-                    const std::vector<GlyphLine>& lines);
+// The cone glyphs' default length, in level-0 voxels.
+inline constexpr float kConeGlyphVoxels = 12.0f;
 
 }  // namespace gi

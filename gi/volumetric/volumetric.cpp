@@ -4,6 +4,8 @@
 #include "gi/render/light_uniforms.h"
 #include "gi/render/gpu_scene.h"
 #include "gi/util/error.h"
+#include "gi/volumetric/phase.h"
+#include "gi/volumetric/phase_plot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -163,6 +165,15 @@ std::vector<std::string> Volumetric::passNames(const FrameSettings& fs) const {
     if (s.blur != VolumeBlur::None) names.push_back("volumetric.blur");
     names.push_back("volumetric.composite");
     return names;
+}
+
+std::vector<Previewer> Volumetric::previewers(const FrameSettings& fs) const {
+    if (!fs.volumetric.enabled) return {};
+    auto plot = [](const PreviewContext& ctx) {
+        const int size = 256;
+        return PreviewImage{size, size, phasePlotImage(phaseParams(ctx.settings.volumetric), size, false)};
+    };
+    return {{"volumetric.phase", "The phase function as a polar plot, light travelling along +x", plot, {}}};
 }
 
 std::unique_ptr<Pass> VolumetricSettings::createPass() { return std::make_unique<Volumetric>(); }

@@ -69,6 +69,8 @@ public:
     static size_t estimateBytes(const FrameSettings& fs);
     // "volumetricRaw" (the march) and "volumetric" (after the blur), when active.
     std::vector<DebugView> debugViews() const override;
+    // volumetric.phase: the phase function as a polar plot (linear), light travelling along +x.
+    std::vector<Previewer> previewers(const FrameSettings& fs) const override;
     bool reloadShaders(std::string& log) override;
     GLuint result() const { return mBlurred.id(); }
 

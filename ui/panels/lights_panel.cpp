@@ -1,0 +1,65 @@
+// The lights panel (the preset's own lights or the scene's) and the camera's tools beside its
+// generated fields.
+#include "ui/editor.h"
+
+#include "ui/panel_util.h"
+#include "ui/settings_panel.h"
+
+#include <imgui.h>
+
+namespace fs = std::filesystem;
+
+namespace gi::ui {
+
+uint8_t Editor::cameraTools() {
+    uint8_t cost = 0;
+    if (ImGui::Button("Frame scene") && mScene.bounds.valid()) {
+        CameraSettings framed = frameBounds(mScene.bounds);
+        mPreset.camera.eye = framed.eye;
+        mPreset.camera.target = framed.target;
+        mPreset.camera.near = framed.near;
+        mPreset.camera.far = framed.far;
+        mPreset.camera.sceneCamera = -1;
+        cost |= uint8_t(Cost::Uniform);
+    }
+    hintText("viewport: right drag to look, WASD/QE to move, Shift: faster");
+    return cost;
+}
+
+uint8_t Editor::lightsPanel() {
+    // Scene lights are shown as they are; the first edit copies them into the preset.
+    std::vector<LightSettings> lights = mPreset.lightsFromScene ? mScene.lights : mPreset.lights;
+    uint8_t cost = 0;
+    if (mPreset.lightsFromScene) {
+        hintText("the scene's own lights (an edit copies them into the preset)");
+    } else if (ImGui::Button("Use the scene's lights")) {
+        mPreset.lightsFromScene = true;
+        mPreset.lights.clear();
+        return uint8_t(Cost::Reallocate);
+    }
+    int removed = -1;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        ImGui::PushID(int(i));
+        if (ImGui::TreeNodeEx("light", ImGuiTreeNodeFlags_DefaultOpen, "light %zu: %s", i, enumName(lights[i].type))) {
+            cost |= drawSettings(lights[i]);
+            if (ImGui::SmallButton("Remove light")) removed = int(i);
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+    if (removed >= 0) {
+        lights.erase(lights.begin() + removed);
+        cost |= uint8_t(Cost::Reallocate);
+    }
+    if (ImGui::Button("Add light")) {
+        lights.emplace_back();
+        cost |= uint8_t(Cost::Reallocate);
+    }
+    if (cost) {
+        mPreset.lights = std::move(lights);
+        mPreset.lightsFromScene = false;
+    }
+    return cost;
+}
+
+}  // namespace gi::ui

@@ -1,0 +1,46 @@
+// The stats panel: per-pass GPU time and memory of the last frame, and the budget.
+#include "ui/editor.h"
+
+#include "ui/panel_util.h"
+#include "ui/settings_panel.h"
+
+#include <imgui.h>
+#include <algorithm>
+
+namespace fs = std::filesystem;
+
+namespace gi::ui {
+
+void Editor::statsPanel() {
+    ImGui::TextWrapped("%s", mGLRenderer.c_str());
+    ImGui::Text("frame %.1f ms (%.1f fps), %dx%d", mFrameMs, mFrameMs > 0 ? 1000.0f / mFrameMs : 0.0f, mWidth, mHeight);
+    size_t passBytes = 0;
+    if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH)) {
+        ImGui::TableSetupColumn("pass");
+        ImGui::TableSetupColumn("GPU ms");
+        ImGui::TableSetupColumn("MiB");
+        ImGui::TableHeadersRow();
+        double totalMs = 0.0;
+        auto row = [](const char* name, double ms, size_t bytes) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(name);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.2f", ms);
+            ImGui::TableNextColumn();
+            ImGui::Text("%.1f", mebibytes(bytes));
+        };
+        for (const PassStats& p : mRenderer.passStats()) {
+            row(p.name.c_str(), p.gpuMs, p.memoryBytes);
+            totalMs += p.gpuMs;
+            passBytes += p.memoryBytes;
+        }
+        row("total", totalMs, passBytes);
+        ImGui::EndTable();
+    }
+    size_t total = mRenderer.memoryBytes();
+    ImGui::Text("GPU memory %.1f MiB (scene %.1f MiB)", mebibytes(total), mebibytes(total - std::min(total, passBytes)));
+    ImGui::Text("budget %.0f MiB", double(mPreset.render.memoryBudgetMB));
+}
+
+}  // namespace gi::ui
