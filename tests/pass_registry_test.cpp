@@ -127,15 +127,22 @@ TEST_F(PassRegistryGL, EveryTechniqueRendersWithItsPassesInStats) {
 
 // The cost tags decide what a pass rebuilds: a Uniform change rebuilds nothing, a Reallocate
 // change rebuilds what it tags, and an unchanged frame rebuilds nothing.
-TEST_F(PassRegistryGL, CostTagsDecideWhatIsRebuilt) {
-    Scene scene = loadScene("cornell");
+// A preset with `technique` and the environment on, both at small sizes (a 16^2 cube, 4 samples).
+Preset smallPreset(const char* technique) {
     Preset p;
-    p.header.technique.name = "vct";
+    p.header.technique.name = technique;
+    p.lpv.gridResolution = 16;
     p.vct.gridResolution = 32;
     p.environment.enabled = true;
     p.environment.file = "builtin:sky";
     p.environment.cubeSize = 16;
     p.environment.samples = 4;
+    return p;
+}
+
+TEST_F(PassRegistryGL, CostTagsDecideWhatIsRebuilt) {
+    Scene scene = loadScene("cornell");
+    Preset p = smallPreset("vct");
     Renderer r;
     r.setScene(scene);
     auto frame = [&](const Preset& preset) {
@@ -173,16 +180,9 @@ TEST_F(PassRegistryGL, PreviewersDrawWhatTheyName) {
     Scene scene = loadScene("cornell");
     std::set<std::string> seen;
     for (const char* technique : {"lpv", "vct"}) {
-        Preset p;
-        p.header.technique.name = technique;
-        p.lpv.gridResolution = 16;
-        p.vct.gridResolution = 32;
+        Preset p = smallPreset(technique);
         p.volumetric.enabled = true;
         p.volumetric.density = 0.2f;
-        p.environment.enabled = true;
-        p.environment.file = "builtin:sky";
-        p.environment.cubeSize = 16;
-        p.environment.samples = 4;
         Renderer r;
         r.setScene(scene);
         FrameSettings fs = frameSettings(p, scene, 64, 48);
