@@ -1,7 +1,9 @@
 #include "gi/lpv/lpv.h"
 
+#include "common/light.h"
 #include "common/shared.h"
 #include "gi/render/gpu_scene.h"
+#include "gi/render/lights.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 
@@ -176,8 +178,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     for (size_t li = 0; li < fs.lights.size(); ++li) {
         const LightSettings& l = fs.lights[li];
         if (!hasRSM(l)) continue;
-        glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
-        glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+        glm::vec3 dir = light::lightDirection(l.direction);
         for (size_t k = 0; k < mBoxes.size(); ++k, ++index) {
             RSM& m = mRSMs[index];
             m.light = int(li);
@@ -187,7 +188,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
                 // The seed's fit: the extent of the cascade's corners projected on the light's plane.
                 glm::vec3 c = box.center();
                 float back = glm::length(bounds.center() - c) + sceneRadius + box.extent;
-                glm::mat4 view = glm::lookAt(c - dir * back, c, up);
+                glm::mat4 view = glm::lookAt(c - dir * back, c, light::shadowUp(dir));
                 float half = 0.0f;
                 for (int i = 0; i < 8; ++i) {
                     glm::vec3 corner = box.min + box.extent * glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
@@ -195,14 +196,16 @@ void LPV::renderRSMs(const FrameContext& ctx) {
                     half = std::max(half, std::max(std::abs(v.x), std::abs(v.y)));
                 }
                 m.viewProj = glm::ortho(-half, half, -half, half, back * 0.01f, back * 2.0f + box.extent) * view;
-                float texel = 2.0f * half / float(mRSMResolution);
+                float texel = light::orthoTexel(half, mRSMResolution);
                 m.texelArea = texel * texel;
                 m.texelSolidAngle = 0.0f;
             } else {
-                float fov = std::min(2.0f * l.outerConeDeg + 2.0f, 170.0f);
+                // The shadow map's frustum, but not cut at the range: texels past it light nothing
+                // yet still block light in the geometry volume.
+                float fov = light::spotShadowFovDeg(l.outerConeDeg);
                 float far = glm::length(l.position - bounds.center()) + sceneRadius;
-                m.viewProj = glm::perspective(glm::radians(fov), 1.0f, far * 1e-3f, far) * glm::lookAt(l.position, l.position + dir, up);
-                float t = 2.0f * std::tan(glm::radians(fov) * 0.5f) / float(mRSMResolution);
+                m.viewProj = spotViewProj(l.position, dir, fov, far);
+                float t = light::perspectiveTexel(fov, mRSMResolution);
                 m.texelArea = 0.0f;
                 m.texelSolidAngle = t * t;
             }
@@ -212,13 +215,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
             const float one = 1.0f;
             glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
             mRSMProg.set("uLightViewProj", m.viewProj);
-            mRSMProg.set("uLightType", int(l.type));
-            mRSMProg.set("uLightColor", l.color * l.intensity);
-            mRSMProg.set("uLightPos", l.position);
-            mRSMProg.set("uLightDir", dir);
-            mRSMProg.set("uLightRange", l.range);
-            mRSMProg.set("uCosInner", std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg))));
-            mRSMProg.set("uCosOuter", std::cos(glm::radians(l.outerConeDeg)));
+            mRSMProg.set("uLightIndex", int(li));
             mRSMProg.set("uTexelArea", m.texelArea);
             mRSMProg.set("uTexelSolidAngle", m.texelSolidAngle);
             ctx.scene.draw([&](const Material& mat, int) {

@@ -1,8 +1,10 @@
 #include "gi/reference/path_tracer.h"
 
 #include "common/ggx.h"
+#include "common/light.h"
 
 #include "gi/envmap/envmap_image.h"
+#include "gi/render/lights.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 #include "gi/volumetric/medium.h"
@@ -483,32 +485,21 @@ struct PathTracer::Impl {
         return p + ng * scale;
     }
 
-    // Light from one punctual light arriving at P along direction L (unoccluded), as in light.frag.
-    static glm::vec3 punctual(const LightSettings& l, const glm::vec3& P, glm::vec3& L, float& dist) {
-        glm::vec3 E = l.color * l.intensity;
-        glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
-        if (l.type == LightType::Directional) {
+    // Light from one punctual light arriving at P along direction L (unoccluded): the light
+    // model of the raster passes (common/light.h) on the same packed light.
+    static glm::vec3 punctual(const LightSettings& settings, const glm::vec3& P, glm::vec3& L, float& dist) {
+        light::GPULight l = packLight(settings);
+        glm::vec3 E(l.color);
+        glm::vec3 dir(l.direction);
+        if (l.info.x == shared::kLightDirectional) {
             L = -dir;
             dist = std::numeric_limits<float>::infinity();
             return E;
         }
-        glm::vec3 toLight = l.position - P;
+        glm::vec3 toLight = glm::vec3(l.position) - P;
         dist = glm::length(toLight);
         L = toLight / std::max(dist, 1e-6f);
-        float atten = 1.0f / std::max(dist * dist, 1e-8f);
-        if (l.range > 0.0f) {
-            float r = dist / l.range;
-            float w = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
-            atten *= w * w;
-        }
-        if (l.type == LightType::Spot) {
-            float cosOuter = std::cos(glm::radians(l.outerConeDeg));
-            float cosInner = std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg)));
-            float cd = glm::dot(-L, dir);
-            float t = std::clamp((cd - cosOuter) / std::max(cosInner - cosOuter, 1e-6f), 0.0f, 1.0f);
-            atten *= t * t * (3.0f - 2.0f * t);
-        }
-        return E * atten;
+        return E * light::lightFalloff(l, dist, glm::dot(-L, dir));
     }
 
     // Radiance along the ray o + t d (t > tnear); `firstHit` gets the distance to the first

@@ -8,7 +8,8 @@
 //     render.specular is off. One lobe is picked per bounce (probability from the lobes' albedo
 //     estimates) and the mixture pdf is used, so both lobes stay unbiased.
 //   - Punctual lights (directional, point, spot) by next-event estimation with the raster's
-//     falloff (glTF range window, smoothstep spot cone). Emissive triangles are area lights,
+//     falloff, the one light model of common/light.h (inverse square, glTF range window,
+//     smoothstep spot cone, outer cone at most 90 degrees). Emissive triangles are area lights,
 //     sampled by power with multiple importance sampling (power heuristic) against BSDF sampling.
 //     Emission leaves the side the shading normal points to.
 //   - All surfaces are two-sided, as in the raster pipeline: the shading normal faces the ray.

@@ -234,6 +234,7 @@ void Renderer::render(const FrameSettings& fs) {
     resize(fs.width, fs.height);
     prepareShadows(fs);
     selectPasses(fs);
+    mLightBuffer.upload(fs.lights, mScene->bounds(), mShadowSize);
     mCamera = fs.camera;
 
     glm::mat4 view = viewMatrix(fs.camera);
@@ -284,10 +285,6 @@ void Renderer::render(const FrameSettings& fs) {
 
 void Renderer::renderShadows(const FrameSettings& fs) {
     auto pass = mTimer.scope("shadows");
-    const Bounds& b = mScene->bounds();
-    glm::vec3 center = b.center();
-    float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);
-
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -310,26 +307,9 @@ void Renderer::renderShadows(const FrameSettings& fs) {
         const LightSettings& l = fs.lights[i];
         ShadowMap& sm = mShadows[i];
         if (!l.castShadows) continue;
-        glm::vec3 dir = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
-        glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-        if (l.type == LightType::Directional) {
-            glm::mat4 view = glm::lookAt(center - dir * radius * 2.0f, center, up);
-            glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, radius * 0.5f, radius * 3.5f);
-            sm.viewProj = proj * view;
-            sm.texel = 2.0f * radius / float(mShadowSize);
-        } else if (l.type == LightType::Spot) {
-            float fov = std::min(2.0f * l.outerConeDeg + 2.0f, 170.0f);
-            float dist = glm::length(l.position - center) + radius;
-            sm.far = l.range > 0.0f ? std::min(l.range, dist) : dist;
-            glm::mat4 view = glm::lookAt(l.position, l.position + dir, up);
-            glm::mat4 proj = glm::perspective(glm::radians(fov), 1.0f, sm.far * 1e-3f, sm.far);
-            sm.viewProj = proj * view;
-            sm.texel = 2.0f * std::tan(glm::radians(fov) * 0.5f) / float(mShadowSize);
-        } else {
-            sm.far = glm::length(l.position - center) + radius;
-            if (l.range > 0.0f) sm.far = std::min(sm.far, l.range);
-            sm.texel = 2.0f / float(mShadowSize);
-        }
+        // The projection the light buffer holds, so the passes that read the map agree with it.
+        sm.viewProj = mLightBuffer[i].shadowViewProj;
+        sm.far = mLightBuffer[i].shadow.x;
         if (l.type == LightType::Point) {
             mShadowPointProg.use();
             mShadowPointProg.set("uLightPos", l.position);
@@ -337,7 +317,7 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
             const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
             const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-            glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, sm.far * 1e-3f, sm.far);
+            glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, sm.far * light::kShadowNearRatio, sm.far);
             for (int face = 0; face < 6; ++face) {
                 glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
                 glClear(GL_DEPTH_BUFFER_BIT);
@@ -430,20 +410,8 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     for (size_t i = 0; i < fs.lights.size(); ++i) {
         const LightSettings& l = fs.lights[i];
         const ShadowMap& sm = mShadows[i];
-        mLightProg.set("uLightType", int(l.type));
-        mLightProg.set("uLightColor", l.color * l.intensity);
-        mLightProg.set("uLightPos", l.position);
-        mLightProg.set("uLightDir", glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0));
-        mLightProg.set("uLightRange", l.range);
-        mLightProg.set("uCosInner", std::cos(glm::radians(std::min(l.innerConeDeg, l.outerConeDeg))));
-        mLightProg.set("uCosOuter", std::cos(glm::radians(l.outerConeDeg)));
-        mLightProg.set("uShadows", l.castShadows ? 1 : 0);
-        if (l.castShadows) {
-            mLightProg.set("uShadowViewProj", sm.viewProj);
-            mLightProg.set("uShadowTexel", sm.texel);
-            mLightProg.set("uShadowFar", sm.far);
-            glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
-        }
+        mLightProg.set("uLightIndex", int(i));
+        if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
         if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, 0);
     }
@@ -508,7 +476,7 @@ std::vector<DebugView> Renderer::debugViews() const {
         const ShadowMap& sm = mShadows[i];
         int mode = cube ? kViewCubeCross : sm.type == LightType::Spot ? kViewLinearDepth : kViewRawDepth;
         v.push_back({name, sm.depth.id(), sm.depth.target(), mode, cube ? mShadowSize * 4 / 3 : mShadowSize, mShadowSize,
-                     sm.far * 1e-3f, sm.far, sm.far});
+                     sm.far * light::kShadowNearRatio, sm.far, sm.far});
     }
     return v;
 }

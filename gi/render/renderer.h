@@ -17,6 +17,7 @@
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
 #include "gi/render/gpu_scene.h"
+#include "gi/render/lights.h"
 #include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
 #include "gi/scene/camera.h"
@@ -108,7 +109,7 @@ private:
         gl::Texture depth;
         std::vector<gl::Framebuffer> fbos;  // 1, or 6 for cube faces
         glm::mat4 viewProj{1.0f};           // 2D maps
-        float texel = 0.0f, far = 1.0f;
+        float far = 1.0f;
         LightType type = LightType::Directional;
     };
 
@@ -124,6 +125,7 @@ private:
     gl::Framebuffer mGBufferFBO, mHDRFBO, mLDRFBO;
     std::vector<ShadowMap> mShadows;  // one per light; empty depth when the light casts none
     std::vector<ShadowMapView> mShadowViews;
+    LightBuffer mLightBuffer;  // this frame's lights, bound for every pass
     int mShadowSize = 0;
     std::vector<LightType> mShadowTypes;
     std::vector<bool> mShadowCast;

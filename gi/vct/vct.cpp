@@ -1,6 +1,6 @@
 #include "gi/vct/vct.h"
 
-#include "gi/render/light_uniforms.h"
+#include "gi/render/lights.h"
 
 #include "common/shared.h"
 #include "gi/render/gpu_scene.h"
@@ -279,11 +279,12 @@ void VCT::inject(const FrameContext& ctx) {
         size_t first = 0;
         do {
             int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
+            mInjectProg.set("uLightFirst", int(first));
             mInjectProg.set("uLightCount", count);
             mInjectProg.set("uAccumulate", first > 0 ? 1 : 0);
             for (int i = 0; i < count; ++i) {
                 const ShadowMapView& sm = ctx.shadows[first + size_t(i)];
-                setLightBatchUniforms(mInjectProg, i, lights[first + size_t(i)], sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
+                bindBatchShadowMap(i, sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
                 if (sm.depth) glBindSampler(GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i), mShadowSampler.id());
             }
             GLuint g = groups(mResolution, 4);

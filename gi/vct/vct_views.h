@@ -22,7 +22,7 @@
 
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
-#include "gi/render/renderer.h"
+#include "gi/render/pass.h"
 #include "gi/scene/scene.h"
 #include "gi/vct/vct.h"
 

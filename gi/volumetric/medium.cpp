@@ -1,5 +1,7 @@
 #include "gi/volumetric/medium.h"
 
+#include "common/light.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -50,8 +52,8 @@ bool clipRayToLight(const LightSettings& l, const glm::vec3& o, const glm::vec3&
     if (l.type != LightType::Spot) return true;
     // Inside the cone: a . (v + t d) >= cos |v + t d|, with a the spot's axis. Squared, with the
     // sign condition a . (v + t d) >= 0: A t^2 + 2 B t + C >= 0.
-    glm::vec3 a = glm::length(l.direction) > 1e-8f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
-    float cosOuter = std::cos(glm::radians(std::min(l.outerConeDeg, 90.0f)));
+    glm::vec3 a = light::lightDirection(l.direction);
+    float cosOuter = light::spotCosines(l.innerConeDeg, l.outerConeDeg).y;
     float c2 = cosOuter * cosOuter;
     float ad = glm::dot(a, d), av = glm::dot(a, v);
     float A = ad * ad - c2, B = ad * av - c2 * glm::dot(d, v), C = av * av - c2 * glm::dot(v, v);
@@ -95,7 +97,7 @@ float lightPathInBox(const Bounds& box, const LightSettings& l, const glm::vec3&
     glm::vec3 dir;
     float length;
     if (l.type == LightType::Directional) {
-        dir = glm::length(l.direction) > 1e-8f ? -glm::normalize(l.direction) : glm::vec3(0, 1, 0);
+        dir = -light::lightDirection(l.direction);
         length = 1e30f;
     } else {
         glm::vec3 toLight = l.position - x;

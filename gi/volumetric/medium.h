@@ -7,11 +7,11 @@
 //     1 / opticalThickness in the seed's mode (eq. 3.1);
 //   - single scattering of the punctual lights along the camera ray only: in-scattered radiance
 //     L = intensity * integral over the ray inside the box of T(eye, x) sigma_s p(theta) Li(x) dt,
-//     where Li is the light's radiance at x with the raster's falloff (1/d^2, glTF range window,
-//     smoothstep spot cone), its shadow visibility, and T(light, x) over the part of the light's
-//     path inside the box; the surface seen through the medium is faded by T(eye, surface) when
-//     attenuateScene is on. Light reaching surfaces is not faded by the medium (as the seed:
-//     its effect is a post-process), and there is no multiple scattering.
+//     where Li is the light's radiance at x with the raster's falloff (common/light.h: 1/d^2,
+//     glTF range window, smoothstep spot cone), its shadow visibility, and T(light, x) over the
+//     part of the light's path inside the box; the surface seen through the medium is faded by
+//     T(eye, surface) when attenuateScene is on. Light reaching surfaces is not faded by the
+//     medium (as the seed: its effect is a post-process), and there is no multiple scattering.
 //   - In the seed's opticalThickness mode sigma_t = 1/l does not depend on the density, so a
 //     density above 1/l scatters more than the medium removes (not energy conserving: the seed's
 //     model, kept for comparison; the coefficients mode always has sigma_t >= sigma_s).

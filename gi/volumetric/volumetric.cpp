@@ -1,8 +1,8 @@
 #include "gi/volumetric/volumetric.h"
 
 #include "common/shared.h"
-#include "gi/render/light_uniforms.h"
 #include "gi/render/gpu_scene.h"
+#include "gi/render/lights.h"
 #include "gi/util/error.h"
 #include "gi/volumetric/phase.h"
 #include "gi/volumetric/phase_plot.h"
@@ -96,6 +96,7 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
         size_t lightCount = fs.lights.size();
         for (size_t first = 0; first == 0 || first < lightCount; first += kMaxLights) {
             int n = int(std::min<size_t>(kMaxLights, lightCount - std::min(first, lightCount)));
+            mMarchProg.set("uLightFirst", int(first));
             mMarchProg.set("uLightCount", n);
             mMarchProg.set("uAccumulate", first > 0 ? 1 : 0);
             for (int i = 0; i < kMaxLights; ++i) {
@@ -103,9 +104,7 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
                 glBindTextureUnit(kUnitShadow2D + GLuint(i), 0);
                 glBindTextureUnit(kUnitShadowCube + GLuint(i), 0);
             }
-            for (int i = 0; i < n; ++i)
-                setLightBatchUniforms(mMarchProg, i, fs.lights[first + size_t(i)], in.shadows[first + size_t(i)], kUnitShadow2D,
-                                      kUnitShadowCube);
+            for (int i = 0; i < n; ++i) bindBatchShadowMap(i, in.shadows[first + size_t(i)], kUnitShadow2D, kUnitShadowCube);
             glDispatchCompute(groups(mWidth), groups(mHeight), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }

@@ -1,8 +1,8 @@
 // Reflective shadow map texel: world position (w: the surfel's world area), normal facing the
 // light, and the flux the surfel reflects diffusely: albedo * light * projected texel area
 // (directional) or albedo * intensity * texel solid angle (spot), so the total does not depend
-// on the map's resolution.
-#include "common/shared.h"
+// on the map's resolution. The light is entry uLightIndex of the frame's light buffer.
+#include "common/light.h"
 #include "common/material.glsl"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
@@ -10,13 +10,7 @@ uniform vec4 uBaseColor;
 uniform float uMetallic;
 uniform bool uHasTexture;
 uniform float uAlphaCutoff;
-uniform int uLightType;
-uniform vec3 uLightColor;  // color * intensity
-uniform vec3 uLightPos;
-uniform vec3 uLightDir;
-uniform float uLightRange;
-uniform float uCosInner;
-uniform float uCosOuter;
+uniform int uLightIndex;
 uniform float uTexelArea;        // directional
 uniform float uTexelSolidAngle;  // spot, at the map's centre
 
@@ -32,27 +26,22 @@ void main() {
     vec4 base = uBaseColor;
     if (uHasTexture) base *= sampleMaterial(uBaseColorTex, vUV);
     if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
+    GPULight l = uLights[uLightIndex];
     vec3 L;  // towards the light
     vec3 flux;
     float area;
-    if (uLightType == kLightDirectional) {
-        L = -uLightDir;
-        flux = uLightColor * uTexelArea;
+    if (l.info.x == kLightDirectional) {
+        L = -l.direction.xyz;
+        flux = l.color.rgb * uTexelArea;
         area = uTexelArea;
     } else {
-        vec3 toLight = uLightPos - vWorld;
+        vec3 toLight = l.position.xyz - vWorld;
         float d = length(toLight);
         L = toLight / d;
         // A texel's solid angle shrinks with cos^3 of its angle off the axis.
-        float cosAxis = dot(-L, uLightDir);
+        float cosAxis = dot(-L, l.direction.xyz);
         float solidAngle = uTexelSolidAngle * cosAxis * cosAxis * cosAxis;
-        float atten = smoothstep(uCosOuter, uCosInner, cosAxis);
-        if (uLightRange > 0.0) {
-            float r = d / uLightRange;
-            float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-            atten *= w * w;
-        }
-        flux = uLightColor * atten * solidAngle;
+        flux = l.color.rgb * lightProfile(l, d, cosAxis) * solidAngle;
         area = solidAngle * d * d;
     }
     vec3 n = normalize(vNormal);

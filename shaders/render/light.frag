@@ -1,24 +1,15 @@
-// Direct light of one light, added to the HDR image (additive blend). Shadows: directional and
-// spot lights use a 2D depth map, point lights a cube map of distance / far; both are filtered
-// with a grid of hardware-compared taps (PCF) and offset along the normal by the bias (in
-// shadow-map texels, so the bias follows the map's resolution).
+// Direct light of one light of the frame's light buffer (common/light.h), added to the HDR image
+// (additive blend). Shadows: directional and spot lights use a 2D depth map, point lights a cube
+// map of distance / far; both are filtered with a grid of hardware-compared taps (PCF) and offset
+// along the normal by the bias (in shadow-map texels, so the bias follows the map's resolution).
 #include "render/gbuffer_common.glsl"
 #include "common/brdf.glsl"
+#include "common/light.h"
 
 layout(binding = kUnitShadow2D) uniform sampler2DShadow uShadow2D;
 layout(binding = kUnitShadowCube) uniform samplerCubeShadow uShadowCube;
 
-uniform int uLightType;
-uniform vec3 uLightColor;       // color * intensity
-uniform vec3 uLightPos;
-uniform vec3 uLightDir;         // direction the light travels
-uniform float uLightRange;      // 0: infinite
-uniform float uCosInner;
-uniform float uCosOuter;
-uniform bool uShadows;
-uniform mat4 uShadowViewProj;
-uniform float uShadowTexel;     // world size of one texel: at distance 1 for spot/point, absolute for directional
-uniform float uShadowFar;       // point lights: the far distance the cube stores depth against
+uniform int uLightIndex;        // into uLights
 uniform float uShadowSize;      // texels per side
 uniform float uPCFRadius;       // texels
 uniform float uShadowBias;      // texels
@@ -29,10 +20,10 @@ out vec4 oColor;
 
 const int kPCFTaps = 2;  // (2 * kPCFTaps + 1)^2 taps
 
-float shadow2D(vec3 P, vec3 N, vec3 L, float dist) {
-    float texel = uLightType == kLightDirectional ? uShadowTexel : uShadowTexel * dist;
+float shadow2D(GPULight l, vec3 P, vec3 N, vec3 L, float dist) {
+    float texel = l.info.x == kLightDirectional ? l.shadow.y : l.shadow.y * dist;
     vec3 Pb = P + N * (uShadowBias * texel) + L * (0.5 * uShadowBias * texel);
-    vec4 c = uShadowViewProj * vec4(Pb, 1.0);
+    vec4 c = l.shadowViewProj * vec4(Pb, 1.0);
     vec3 ndc = c.xyz / c.w;
     vec3 tc = ndc * 0.5 + 0.5;
     if (any(lessThan(tc.xy, vec2(0.0))) || any(greaterThan(tc.xy, vec2(1.0))) || tc.z > 1.0) return 1.0;
@@ -44,11 +35,11 @@ float shadow2D(vec3 P, vec3 N, vec3 L, float dist) {
     return sum / float((2 * kPCFTaps + 1) * (2 * kPCFTaps + 1));
 }
 
-float shadowCube(vec3 P, vec3 N, vec3 L, float dist) {
-    float texel = uShadowTexel * dist;
+float shadowCube(GPULight l, vec3 P, vec3 N, vec3 L, float dist) {
+    float texel = l.shadow.y * dist;
     vec3 Pb = P + N * (uShadowBias * texel) + L * (0.5 * uShadowBias * texel);
-    vec3 d = Pb - uLightPos;
-    float ref = length(d) / uShadowFar;
+    vec3 d = Pb - l.position.xyz;
+    float ref = length(d) / l.shadow.x;
     vec3 dn = normalize(d);
     vec3 t = normalize(cross(abs(dn.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0), dn));
     vec3 b = cross(dn, t);
@@ -65,29 +56,24 @@ void main() {
     Surface s;
     if (!readSurface(px, vUV, s)) discard;
 
+    GPULight l = uLights[uLightIndex];
+    // Normalised once more, as this pass always did: the GPU's normalize rounds unlike the CPU's,
+    // and leaving it out would move pixels.
+    vec3 axis = normalize(l.direction.xyz);
     vec3 L;
-    vec3 E = uLightColor;
+    vec3 E = l.color.rgb;
     float dist = 1.0;
-    if (uLightType == kLightDirectional) {
-        L = -normalize(uLightDir);
+    if (l.info.x == kLightDirectional) {
+        L = -axis;
     } else {
-        vec3 toLight = uLightPos - s.P;
+        vec3 toLight = l.position.xyz - s.P;
         dist = length(toLight);
         L = toLight / max(dist, 1e-6);
-        float atten = 1.0 / max(dist * dist, 1e-8);
-        if (uLightRange > 0.0) {
-            float r = dist / uLightRange;
-            atten *= clamp(1.0 - r * r * r * r, 0.0, 1.0) * clamp(1.0 - r * r * r * r, 0.0, 1.0);
-        }
-        if (uLightType == kLightSpot) {
-            float cd = dot(-L, normalize(uLightDir));
-            atten *= smoothstep(uCosOuter, uCosInner, cd);
-        }
-        E *= atten;
+        E *= lightFalloff(l, dist, dot(-L, axis));
     }
     vec3 f = evalBRDFCos(s.N, s.V, L, s.baseColor, s.metallic, s.roughness, uSpecular);
     if (all(equal(f, vec3(0.0))) || all(equal(E, vec3(0.0)))) discard;
     float vis = 1.0;
-    if (uShadows) vis = uLightType == kLightPoint ? shadowCube(s.P, s.N, L, dist) : shadow2D(s.P, s.N, L, dist);
+    if (l.info.y != 0) vis = l.info.x == kLightPoint ? shadowCube(l, s.P, s.N, L, dist) : shadow2D(l, s.P, s.N, L, dist);
     oColor = vec4(f * E * vis, 1.0);
 }

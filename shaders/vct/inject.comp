@@ -1,11 +1,13 @@
-// Light injection, per voxel: the direct irradiance E of up to kVCTMaxLights lights on each side
-// of the voxel's surface (front: along its mean normal, back: against it), tested against the
-// renderer's shadow maps at the voxel centre moved one voxel towards the light and half a voxel
-// off the surface (the voxel centre can sit up to half a diagonal behind the surface it holds),
-// stored as the radiance each side leaves, L = albedo * E / pi (Lambertian), plus the emission on
-// both sides in the first batch. Later batches (more lights) and bounces add to it.
+// Light injection, per voxel: the direct irradiance E of a batch of up to kVCTMaxLights lights of
+// the frame's light buffer (common/light.h) on each side of the voxel's surface (front: along its
+// mean normal, back: against it), tested against the renderer's shadow maps at the voxel centre
+// moved one voxel towards the light and half a voxel off the surface (the voxel centre can sit up
+// to half a diagonal behind the surface it holds), stored as the radiance each side leaves,
+// L = albedo * E / pi (Lambertian), plus the emission on both sides in the first batch. Later
+// batches (more lights) and bounces add to it.
 // resolve.comp turns the two sides into the traced radiance volumes.
 #include "vct/common.glsl"
+#include "common/light.h"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
@@ -16,26 +18,18 @@ layout(binding = 4, r11f_g11f_b10f) uniform image3D uExitBack;
 layout(binding = kVCTUnitShadow2D) uniform sampler2DShadow uShadow2D[kVCTMaxLights];
 layout(binding = kVCTUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVCTMaxLights];
 
+uniform int uLightFirst;  // the batch: uLights[uLightFirst + i], its shadow maps on unit + i
 uniform int uLightCount;
 uniform bool uAccumulate;
 uniform float uEmissionRange;  // the scene's largest emission (voxels store emission / range)
-uniform int uLightType[kVCTMaxLights];
-uniform vec3 uLightColor[kVCTMaxLights];  // color * intensity
-uniform vec3 uLightPos[kVCTMaxLights];
-uniform vec3 uLightDir[kVCTMaxLights];    // direction the light travels
-uniform float uLightRange[kVCTMaxLights];
-uniform vec2 uLightCos[kVCTMaxLights];    // cos inner, cos outer
-uniform int uShadowed[kVCTMaxLights];
-uniform mat4 uShadowViewProj[kVCTMaxLights];
-uniform float uShadowFar[kVCTMaxLights];
 
-float visibility(int i, vec3 p) {
-    if (uShadowed[i] == 0) return 1.0;
-    if (uLightType[i] == kLightPoint) {
-        vec3 d = p - uLightPos[i];
-        return texture(uShadowCube[i], vec4(normalize(d), length(d) / uShadowFar[i]));
+float visibility(int i, GPULight l, vec3 p) {
+    if (l.info.y == 0) return 1.0;
+    if (l.info.x == kLightPoint) {
+        vec3 d = p - l.position.xyz;
+        return texture(uShadowCube[i], vec4(normalize(d), length(d) / l.shadow.x));
     }
-    vec4 c = uShadowViewProj[i] * vec4(p, 1.0);
+    vec4 c = l.shadowViewProj * vec4(p, 1.0);
     vec3 tc = c.xyz / c.w * 0.5 + 0.5;
     if (any(lessThan(tc.xy, vec2(0.0))) || any(greaterThan(tc.xy, vec2(1.0))) || tc.z > 1.0) return 1.0;
     return texture(uShadow2D[i], tc);
@@ -54,27 +48,21 @@ void main() {
         n = len > 1e-3 ? n / len : vec3(0.0, 1.0, 0.0);
         vec3 p = voxelCentre(v);
         for (int i = 0; i < uLightCount; ++i) {
+            GPULight l = uLights[uLightFirst + i];
             vec3 L;
-            vec3 E = uLightColor[i];
-            if (uLightType[i] == kLightDirectional) {
-                L = -uLightDir[i];
+            vec3 E = l.color.rgb;
+            if (l.info.x == kLightDirectional) {
+                L = -l.direction.xyz;
             } else {
-                vec3 toLight = uLightPos[i] - p;
+                vec3 toLight = l.position.xyz - p;
                 float dist = length(toLight);
                 L = toLight / max(dist, 1e-6);
-                float atten = 1.0 / max(dist * dist, 1e-8);
-                if (uLightRange[i] > 0.0) {
-                    float r = dist / uLightRange[i];
-                    float w = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-                    atten *= w * w;
-                }
-                if (uLightType[i] == kLightSpot) atten *= smoothstep(uLightCos[i].y, uLightCos[i].x, dot(-L, uLightDir[i]));
-                E *= atten;
+                E *= lightFalloff(l, dist, dot(-L, l.direction.xyz));
             }
             float c = dot(n, L);
             if (all(equal(E, vec3(0.0))) || (len > 1e-3 && abs(c) < 1e-4)) continue;
             vec3 side = c >= 0.0 ? n : -n;
-            float vis = visibility(i, p + L * uCellSize + side * (0.5 * uCellSize));
+            float vis = visibility(i, l, p + L * uCellSize + side * (0.5 * uCellSize));
             // A voxel whose normals cancelled (two faces of a thin slab) takes the light unweighted.
             vec3 e = E * vis * (len > 1e-3 ? abs(c) : 1.0);
             if (c >= 0.0) front += e;

@@ -4,7 +4,8 @@
 // and also covers point lights' range); `samples` points spread evenly over the clipped segment,
 // offset by a fixed per-pixel hash; each tested against the light's shadow map (3x3 compared taps
 // with PCF); unlit samples skip the rest; lit ones add sigma_s p(theta) Li T_light T_view dt.
-// Up to kVolumeMaxLights lights per dispatch; later dispatches add to the buffer.
+// A batch of up to kVolumeMaxLights lights of the frame's light buffer (common/light.h) per
+// dispatch; later dispatches add to the buffer.
 // Output: rgb in-scattered radiance, a = the view distance to the surface (for the depth-aware blur).
 #include "volumetric/medium.glsl"
 #include "volumetric/phase.glsl"
@@ -30,25 +31,17 @@ uniform int uPhase;
 uniform float uG;
 uniform float uK;
 uniform float uIntensity;
+uniform int uLightFirst;  // the batch: uLights[uLightFirst + i], its shadow maps on unit + i
 uniform int uLightCount;
-uniform int uLightType[kVolumeMaxLights];
-uniform vec3 uLightColor[kVolumeMaxLights];  // color * intensity
-uniform vec3 uLightPos[kVolumeMaxLights];
-uniform vec3 uLightDir[kVolumeMaxLights];    // unit, the direction the light travels
-uniform float uLightRange[kVolumeMaxLights];
-uniform vec2 uLightCos[kVolumeMaxLights];    // cos inner, cos outer
-uniform int uShadowed[kVolumeMaxLights];
-uniform mat4 uShadowViewProj[kVolumeMaxLights];
-uniform float uShadowFar[kVolumeMaxLights];
 uniform float uShadowSize;
 
-float visibility(int i, vec3 x) {
-    if (uShadowed[i] == 0) return 1.0;
-    if (uLightType[i] == kLightPoint) {
-        vec3 d = x - uLightPos[i];
-        return texture(uShadowCube[i], vec4(normalize(d), length(d) / uShadowFar[i]));
+float visibility(int i, GPULight l, vec3 x) {
+    if (l.info.y == 0) return 1.0;
+    if (l.info.x == kLightPoint) {
+        vec3 d = x - l.position.xyz;
+        return texture(uShadowCube[i], vec4(normalize(d), length(d) / l.shadow.x));
     }
-    vec4 c = uShadowViewProj[i] * vec4(x, 1.0);
+    vec4 c = l.shadowViewProj * vec4(x, 1.0);
     vec3 tc = c.xyz / c.w * 0.5 + 0.5;
     if (any(lessThan(tc.xy, vec2(0.0))) || any(greaterThan(tc.xy, vec2(1.0))) || tc.z > 1.0) return 1.0;
     if (!uPCF) return texture(uShadow2D[i], tc);
@@ -74,38 +67,32 @@ void main() {
         // Interleaved gradient noise (Jimenez 2014): fixed per pixel, so headless renders repeat.
         float jitter = uJitter ? fract(52.9829189 * fract(dot(vec2(q), vec2(0.06711056, 0.00583715)))) : 0.5;
         for (int i = 0; i < uLightCount; ++i) {
+            GPULight l = uLights[uLightFirst + i];
             float t0 = b0, t1 = b1;
-            if (!clipRayToLight(uLightType[i], uLightPos[i], uLightDir[i], uLightRange[i], uLightCos[i].y, uEye, d, t0, t1))
-                continue;
+            if (!clipRayToLight(l, uEye, d, t0, t1)) continue;
             float dt = (t1 - t0) / float(uSamples);
             vec3 sum = vec3(0.0);
             for (int s = 0; s < uSamples; ++s) {
                 float t = t0 + (float(s) + jitter) * dt;
                 vec3 x = uEye + t * d;
-                float vis = visibility(i, x);
+                float vis = visibility(i, l, x);
                 if (vis <= 0.0) continue;  // unlit: skip the rest (seed 004 Fig. 3.19)
                 vec3 toLight, travel;
                 float dist, atten = 1.0;
-                if (uLightType[i] == kLightDirectional) {
-                    toLight = -uLightDir[i];
-                    travel = uLightDir[i];
+                if (l.info.x == kLightDirectional) {
+                    toLight = -l.direction.xyz;
+                    travel = l.direction.xyz;
                     dist = 1e30;
                 } else {
-                    vec3 v = uLightPos[i] - x;
+                    vec3 v = l.position.xyz - x;
                     dist = length(v);
                     toLight = v / max(dist, 1e-6);
                     travel = -toLight;
-                    atten = 1.0 / max(dist * dist, 1e-8);
-                    if (uLightRange[i] > 0.0) {
-                        float r = dist / uLightRange[i];
-                        float f = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-                        atten *= f * f;
-                    }
-                    if (uLightType[i] == kLightSpot) atten *= smoothstep(uLightCos[i].y, uLightCos[i].x, dot(travel, uLightDir[i]));
+                    atten = lightFalloff(l, dist, dot(travel, l.direction.xyz));
                 }
                 float tLight = exp(-uSigmaT * lightPathInBox(x, toLight, dist));
                 float tView = exp(-uSigmaT * (t - b0));
-                sum += vis * atten * tLight * tView * phaseFunction(uPhase, uG, uK, dot(travel, -d)) * uLightColor[i];
+                sum += vis * atten * tLight * tView * phaseFunction(uPhase, uG, uK, dot(travel, -d)) * l.color.rgb;
             }
             L += sum * (uSigmaS * dt);
         }

@@ -1,6 +1,6 @@
 // The medium of volumetric lighting, the GLSL twin of gi/volumetric/medium.{h,cpp} (see there
 // for the model): a homogeneous box (the scene's bounds), lights clipped to their cone and range.
-#include "common/shared.h"
+#include "common/light.h"
 
 uniform vec3 uBoxMin;
 uniform vec3 uBoxMax;
@@ -17,11 +17,13 @@ bool clipRayToBox(vec3 o, vec3 d, float tMax, out float t0, out float t1) {
     return t0 < t1;
 }
 
-// Narrows [t0, t1] to the light's reach: the range sphere and a spot's convex cone (cosOuter >= 0).
-bool clipRayToLight(int type, vec3 pos, vec3 axis, float range, float cosOuter, vec3 o, vec3 d,
-                    inout float t0, inout float t1) {
-    if (type == kLightDirectional) return t0 < t1;
-    vec3 v = o - pos;
+// Narrows [t0, t1] to the light's reach: the range sphere and a spot's convex cone (the outer
+// cone is at most 90 degrees).
+bool clipRayToLight(GPULight l, vec3 o, vec3 d, inout float t0, inout float t1) {
+    if (l.info.x == kLightDirectional) return t0 < t1;
+    vec3 axis = l.direction.xyz;
+    float range = l.position.w, cosOuter = l.spot.y;
+    vec3 v = o - l.position.xyz;
     if (range > 0.0) {
         float b = dot(v, d), c = dot(v, v) - range * range;
         float disc = b * b - c;
@@ -31,7 +33,7 @@ bool clipRayToLight(int type, vec3 pos, vec3 axis, float range, float cosOuter, 
         t1 = min(t1, -b + s);
         if (t0 >= t1) return false;
     }
-    if (type != kLightSpot) return true;
+    if (l.info.x != kLightSpot) return true;
     float c2 = cosOuter * cosOuter;
     float ad = dot(axis, d), av = dot(axis, v);
     float A = ad * ad - c2, B = ad * av - c2 * dot(d, v), C = av * av - c2 * dot(v, v);

@@ -1,0 +1,49 @@
+// The frame's lights as every pass reads them: each LightSettings packed into a light::GPULight
+// (the light model, shaders/common/light.h) with its shadow projection, uploaded once per frame
+// into one shader storage buffer bound at light::kLightBufferBinding. Passes index it (the raster
+// light pass, the RSMs) or loop over a batch of it (VCT injection, the volumetric march); shadow
+// map textures stay bound by each pass.
+#pragma once
+
+#include "common/light.h"
+#include "gi/gl/handle.h"
+#include "gi/render/pass.h"
+#include "gi/scene/scene.h"
+#include "gi/scene/scene_settings.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace gi {
+
+// Light l as the GPU reads it; the shadow fields are left for setShadowProjection.
+light::GPULight packLight(const LightSettings& l);
+
+// Fills g's shadow fields: the projection of light l's shadow map (square, `size` texels) over a
+// scene with bounds b. Directional: an orthographic box around the scene's bounding sphere;
+// spot: a perspective frustum (spotViewProj); point: a cube reaching `far`.
+void setShadowProjection(light::GPULight& g, const LightSettings& l, const Bounds& b, int size);
+
+// World to clip space of a spot light's square perspective map (shadow map or RSM) at
+// `position` looking along unit `dir`, with field of view fovDeg, reaching `far`.
+glm::mat4 spotViewProj(const glm::vec3& position, const glm::vec3& dir, float fovDeg, float far);
+
+// Binds entry i of a pass's light batch's shadow map, when it has one, to unit2D + i or
+// unitCube + i as its type needs; samplers are the caller's.
+void bindBatchShadowMap(int i, const ShadowMapView& sm, GLuint unit2D, GLuint unitCube);
+
+class LightBuffer {
+public:
+    // Packs the lights with their shadow projections, uploads them and binds the buffer at
+    // light::kLightBufferBinding for every pass of the frame.
+    void upload(const std::vector<LightSettings>& lights, const Bounds& sceneBounds, int shadowSize);
+    const light::GPULight& operator[](size_t i) const { return mLights[i]; }
+
+private:
+    std::vector<light::GPULight> mLights;
+    gl::Buffer mBuffer;
+    size_t mCapacity = 0;  // lights the buffer holds
+};
+
+}  // namespace gi

@@ -1,0 +1,132 @@
+// The one light model, shared by C++ (the renderer, the RSM setup, the path tracer, the medium's
+// CPU clipping) and GLSL (the raster light pass, the RSMs, VCT injection, the volumetric march),
+// with glTF KHR_lights_punctual semantics:
+//   - direction: the way the light travels; a zero vector falls back to straight down;
+//   - point and spot lights fall off with the inverse square of the distance, times a range
+//     window that reaches zero at `range` (0: infinite). The window is glTF's recommended
+//     clamp(1 - (d / range)^4, 0, 1), squared so it also ends with zero slope (as Filament and
+//     Unreal do; the spec's own formula is unsquared);
+//   - spot lights: a smoothstep from the outer cone (0) to the inner cone (1), the outer
+//     half-angle at most 90 degrees as glTF requires, the inner at most the outer.
+// The renderer packs every light into one GPULight array each frame (a std430 buffer at
+// kLightBufferBinding) with its shadow projection, so every pass reads the same numbers.
+// C++ includes it as "common/light.h", GLSL through the #include expander.
+#ifdef __cplusplus
+#pragma once
+#include <glm/glm.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#endif
+#include "common/shared.h"
+#ifdef __cplusplus
+namespace gi::light {
+using namespace gi::shared;
+using glm::ivec4;
+using glm::length;
+using glm::mat4;
+using glm::normalize;
+using glm::radians;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+using std::abs;
+using std::cos;
+using std::max;
+using std::min;
+using std::tan;
+// GLSL's smoothstep; callers keep edge0 < edge1.
+inline float smoothstep(float edge0, float edge1, float x) {
+    float t = clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+#endif
+
+GI_CONST int kLightBufferBinding = 7;         // shader storage binding of the GPULight array (passes use 0..3)
+GI_CONST float kSpotMaxConeDeg = 90.0f;       // glTF: outerConeAngle <= pi / 2
+GI_CONST float kSpotShadowMarginDeg = 1.0f;   // a spot's shadow frustum reaches this far past its outer cone
+GI_CONST float kShadowMaxFovDeg = 170.0f;     // wider perspective maps waste their texels at the edges
+GI_CONST float kShadowNearRatio = 1e-3f;      // near plane of perspective shadow maps and RSMs, times far
+
+// One light as every pass reads it. vec4-packed so std430 and C++ lay it out alike.
+struct GPULight {
+    vec4 color;           // rgb: color * intensity
+    vec4 position;        // xyz: position (point, spot); w: range (0: infinite)
+    vec4 direction;       // xyz: unit direction the light travels (lightDirection)
+    vec4 spot;            // x: cos inner, y: cos outer (spotCosines)
+    vec4 shadow;          // x: far (cube maps store distance / far), y: texel (world size, at distance 1 for spot and point)
+    ivec4 info;           // x: type (kLight*), y: 1 when it casts a shadow (each pass binds the map)
+    mat4 shadowViewProj;  // directional and spot: world to the shadow map's clip space
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(GPULight) == 160, "GPULight must match its std430 layout");
+static_assert(offsetof(GPULight, info) == 80 && offsetof(GPULight, shadowViewProj) == 96, "GPULight must match std430");
+#else
+layout(std430, binding = kLightBufferBinding) readonly buffer LightBuffer { GPULight uLights[]; };
+#endif
+
+// The direction a light travels, unit length; a zero vector means straight down.
+GI_FUNC vec3 lightDirection(vec3 d) { return length(d) > 1e-8f ? normalize(d) : vec3(0.0f, -1.0f, 0.0f); }
+
+// cos of a spot's inner and outer half-angles, the outer at most kSpotMaxConeDeg and the inner at
+// most the outer.
+GI_FUNC vec2 spotCosines(float innerDeg, float outerDeg) {
+    float outer = min(outerDeg, kSpotMaxConeDeg);
+    return vec2(cos(radians(min(innerDeg, outer))), cos(radians(outer)));
+}
+
+// The range window: 1 at the light, 0 from `range` on; range 0 is infinite.
+GI_FUNC float rangeWindow(float dist, float range) {
+    if (range <= 0.0f) return 1.0f;
+    float r = dist / range;
+    float w = clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
+    return w * w;
+}
+
+// The spot cone at cosAxis, the cosine between the spot's axis and the way the light leaves
+// towards the point. Equal cones (inner = outer) give a hard edge.
+GI_FUNC float spotCone(float cosAxis, vec2 cosines) {
+    return smoothstep(cosines.y, max(cosines.x, cosines.y + 1e-6f), cosAxis);
+}
+
+// A point or spot light's falloff at distance dist apart from the inverse square: the range
+// window times the spot cone. RSM texels carry the inverse square in their solid angle.
+GI_FUNC float lightProfile(GPULight l, float dist, float cosAxis) {
+    float w = rangeWindow(dist, l.position.w);
+    return l.info.x == kLightSpot ? w * spotCone(cosAxis, vec2(l.spot)) : w;
+}
+
+// A point or spot light's full falloff: inverse square, range window and spot cone. Multiply
+// color by it for the irradiance normal to the light's path. (Multiplied in this order, the
+// order every pass has always used, so images stay the same to the bit.)
+GI_FUNC float lightFalloff(GPULight l, float dist, float cosAxis) {
+    float atten = 1.0f / max(dist * dist, 1e-8f) * rangeWindow(dist, l.position.w);
+    if (l.info.x == kLightSpot) atten *= spotCone(cosAxis, vec2(l.spot));
+    return atten;
+}
+
+// Full field of view of a spot's shadow map (and RSM): the outer cone and a margin.
+GI_FUNC float spotShadowFovDeg(float outerConeDeg) {
+    return min(2.0f * min(outerConeDeg, kSpotMaxConeDeg) + 2.0f * kSpotShadowMarginDeg, kShadowMaxFovDeg);
+}
+
+// Far plane of a point or spot light's shadow map: where the scene ends seen from the light
+// (`reach`), or the range when nearer, since nothing is lit past it.
+GI_FUNC float shadowFar(float reach, float range) { return range > 0.0f ? min(range, reach) : reach; }
+
+// World size of one texel at distance 1 of a square perspective map `size` texels wide.
+GI_FUNC float perspectiveTexel(float fovDeg, int size) { return 2.0f * tan(radians(fovDeg) * 0.5f) / float(size); }
+
+// World size of one texel of a square orthographic map `size` texels wide spanning 2 halfWidth.
+GI_FUNC float orthoTexel(float halfWidth, int size) { return 2.0f * halfWidth / float(size); }
+
+// perspectiveTexel of a cube map face (90 degrees: tan 45 = 1).
+GI_FUNC float cubeTexel(int size) { return 2.0f / float(size); }
+
+// Up vector of a light's view: world up unless the light travels nearly along it.
+GI_FUNC vec3 shadowUp(vec3 dir) { return abs(dir.y) > 0.99f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f); }
+
+#ifdef __cplusplus
+}  // namespace gi::light
+#endif
