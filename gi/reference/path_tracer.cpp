@@ -23,7 +23,7 @@ namespace gi {
 
 namespace {
 
-constexpr float kPi = glm::pi<float>();
+using shared::kPi;
 
 // PCG32 (O'Neill 2014): small state, good quality, cheap to seed per sample.
 struct PCG32 {

@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace gi {
 
 namespace {
-constexpr double kInv4Pi = 1.0 / (4.0 * 3.14159265358979323846);
+constexpr double kInv4Pi = 1.0 / (4.0 * std::numbers::pi);
 }
 
 // 1.55 g - 0.55 g^3 peaks at 1.0017 (g = 0.969): past |k| = 1 the lobe has a pole, so k is
@@ -32,7 +33,7 @@ double phase(const PhaseParams& p, double c) {
             double k = p.k, d = 1.0 - k * c;
             return kInv4Pi * (1.0 - k * k) / (d * d);
         }
-        case PhaseFunction::Rayleigh: return 3.0 / (16.0 * 3.14159265358979323846) * (1.0 + c * c);
+        case PhaseFunction::Rayleigh: return 3.0 / (16.0 * std::numbers::pi) * (1.0 + c * c);
         case PhaseFunction::MieHazy: return kInv4Pi * (0.5 + 4.5 * std::pow(0.5 * (1.0 + c), 8.0));
         case PhaseFunction::MieMurky: return kInv4Pi * (0.5 + 16.5 * std::pow(0.5 * (1.0 + c), 32.0));
     }
