@@ -29,7 +29,8 @@ public:
     void requireIn(Program& program) const { program.requireBlock(mName, mBinding, sizeof(T)); }
 
     // Uploads `params` and binds the buffer at the block's binding for the draws and dispatches
-    // that follow. GL orders the upload after earlier commands that read the buffer.
+    // that follow. GL orders the upload after earlier commands that read the buffer. Since each
+    // pass binds its block before it runs, techniques may use the same binding numbers.
     void set(const T& params) const {
         glNamedBufferSubData(mBuffer.id(), 0, GLsizeiptr(sizeof(T)), &params);
         glBindBufferBase(GL_UNIFORM_BUFFER, mBinding, mBuffer.id());
