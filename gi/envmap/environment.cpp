@@ -12,12 +12,13 @@
 
 namespace gi {
 
+using namespace shared;
+
 namespace {
 
 constexpr int kLUTSize = 128;
 constexpr int kLUTSamples = 512;
 constexpr int kIrradianceSize = 32;
-constexpr int kMaxMips = 32;  // shade.comp's uMipRoughness[32]
 
 // Wrap S (the latlong's u) as given, T and R clamped.
 gl::Sampler makeSampler(GLenum minFilter, GLenum wrapS) {
@@ -26,6 +27,18 @@ gl::Sampler makeSampler(GLenum minFilter, GLenum wrapS) {
 }
 
 GLuint groups(int n) { return GLuint((n + 7) / 8); }
+
+// The fields shade and sky share.
+EnvParams lookupParams(const EnvironmentSettings& s, int width, int height, const glm::mat4& invViewProj, const glm::vec3& eye) {
+    EnvParams p{};
+    p.invViewProj = invViewProj;
+    p.eye = glm::vec4(eye, 1.0f);
+    p.width = width;
+    p.height = height;
+    p.intensity = s.intensity;
+    p.rotation = s.rotation;
+    return p;
+}
 
 double nowMs() { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
@@ -46,7 +59,7 @@ constexpr double kPrefilterSecondsPerDispatch = 0.5;
 }  // namespace
 
 int Environment::chainMipCount(const EnvironmentSettings& s) {
-    return std::min({int(s.mipRoughness.size()), fullMipCount(s.cubeSize), kMaxMips});
+    return std::min({int(s.mipRoughness.size()), fullMipCount(s.cubeSize), kEnvMaxMips});
 }
 
 int Environment::chainMipOfEntry(const EnvironmentSettings& s, int entry) {
@@ -70,7 +83,9 @@ Environment::Environment()
       mPrefilterProg("environment.prefilter", {{GL_COMPUTE_SHADER, "envmap/prefilter.comp"}}),
       mLUTProg("environment.brdfLUT", {{GL_COMPUTE_SHADER, "envmap/brdf_lut.comp"}}),
       mShadeProg("environment.shade", {{GL_COMPUTE_SHADER, "envmap/shade.comp"}}),
-      mSkyProg("environment.sky", {{GL_COMPUTE_SHADER, "envmap/sky.comp"}}) {
+      mSkyProg("environment.sky", {{GL_COMPUTE_SHADER, "envmap/sky.comp"}}),
+      mBlock(kEnvBlockName, kEnvBlockBinding) {
+    for (gl::Program* p : {&mToCubeProg, &mPrefilterProg, &mLUTProg, &mShadeProg, &mSkyProg}) mBlock.requireIn(*p);
     mLinear = makeSampler(GL_LINEAR, GL_REPEAT);
     mCubeLinear = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(mCubeLinear.id(), GL_TEXTURE_CUBE_MAP_SEAMLESS, GL_TRUE);
@@ -81,9 +96,11 @@ Environment::Environment()
 void Environment::computeLUT() {
     mLUT = gl::Texture::create2D(GL_RG16F, kLUTSize, kLUTSize);
     mLUTProg.use();
-    mLUTProg.set("uSize", kLUTSize);
-    mLUTProg.set("uSamples", kLUTSamples);
-    glBindImageTexture(0, mLUT.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    EnvParams p{};
+    p.size = kLUTSize;
+    p.samples = kLUTSamples;
+    mBlock.set(p);
+    glBindImageTexture(kEnvImageTarget, mLUT.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
     glDispatchCompute(groups(kLUTSize), groups(kLUTSize), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -150,10 +167,12 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
     int size = s.cubeSize, levels = fullMipCount(size), mips = chainMipCount(s);
     mSource = gl::Texture::createCube(GL_RGBA16F, size, levels);
     mToCubeProg.use();
-    mToCubeProg.set("uSize", size);
-    glBindTextureUnit(0, mLatLong.id());
-    glBindSampler(0, mLinear.id());
-    glBindImageTexture(0, mSource.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    EnvParams cube{};
+    cube.size = size;
+    mBlock.set(cube);
+    glBindTextureUnit(kEnvUnitSource, mLatLong.id());
+    glBindSampler(kEnvUnitSource, mLinear.id());
+    glBindImageTexture(kEnvImageTarget, mSource.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups(size), groups(size), 6);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glGenerateTextureMipmap(mSource.id());
@@ -163,9 +182,10 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
     mPrefiltered = gl::Texture::createCube(GL_RGBA16F, size, mips);
     mIrradiance = gl::Texture::createCube(GL_RGBA16F, kIrradianceSize);
     mPrefilterProg.use();
-    mPrefilterProg.set("uSourceSize", size);
-    glBindTextureUnit(0, mSource.id());
-    glBindSampler(0, mCubeLinear.id());
+    EnvParams params{};
+    params.sourceSize = size;
+    glBindTextureUnit(kEnvUnitSource, mSource.id());
+    glBindSampler(kEnvUnitSource, mCubeLinear.id());
     mMips.clear();
     // Progress after each band of rows: the fraction is of the estimated samples.
     const double totalSamples = std::max(estimateSamples(s), 1.0);
@@ -189,14 +209,14 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
     };
     auto dispatch = [&](const gl::Texture& dst, int level, int faceSize, int mode, float roughness, float disk, int samples,
                         int mip) {
-        mPrefilterProg.set("uSize", faceSize);
-        mPrefilterProg.set("uMode", mode);
-        mPrefilterProg.set("uRoughness", roughness);
-        mPrefilterProg.set("uDiskRadius", disk);
-        mPrefilterProg.set("uSamples", samples);
-        glBindImageTexture(0, dst.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        params.size = faceSize;
+        params.mode = mode;
+        params.roughness = roughness;
+        params.diskRadius = disk;
+        params.samples = samples;
+        glBindImageTexture(kEnvImageTarget, dst.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         // Bands of rows (multiples of the 8-row work group) of about kPrefilterSecondsPerDispatch each.
-        bool sampled = mode != 2 && roughness > 0.0f;
+        bool sampled = mode != kEnvPrefilterIrradiance && roughness > 0.0f;
         double rowSamples = sampled ? 6.0 * double(faceSize) * double(samples) : 0.0;
         int rows = faceSize;
         if (rowSamples > 0.0)
@@ -204,14 +224,14 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
         double start = nowMs();
         for (int row = 0; row < faceSize; row += rows) {
             int band = std::min(rows, faceSize - row);
-            mPrefilterProg.set("uRowOffset", row);
+            params.rowOffset = row;
+            mBlock.set(params);
             glDispatchCompute(groups(faceSize), groups(band), 6);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glFinish();
             samplesDone += rowSamples * double(band);
             if (mip >= 0 && row + band < faceSize) report(mip);
         }
-        mPrefilterProg.set("uRowOffset", 0);
         return nowMs() - start;
     };
     // A table longer than the cube's halvings keeps its first entries and its last (so the
@@ -224,14 +244,15 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
         bool cone = s.distribution == PrefilterDistribution::BeckmannCone;
         info.diskRadius = cone ? beckmannDiskRadius(info.roughness) : 0.0f;
         info.samples = info.roughness > 0.0f ? s.samples : 0;
-        info.ms = dispatch(mPrefiltered, m, info.size, cone ? 1 : 0, info.roughness, info.diskRadius, s.samples, m);
+        info.ms = dispatch(mPrefiltered, m, info.size, cone ? kEnvPrefilterBeckmannCone : kEnvPrefilterGGX, info.roughness,
+                           info.diskRadius, s.samples, m);
         mMips.push_back(info);
         report(m + 1);
     }
     std::array<glm::vec3, 9> sh = irradianceSH(mImage);
-    glProgramUniform3fv(mPrefilterProg.id(), mPrefilterProg.location("uSH[0]"), 9, &sh[0].x);
-    dispatch(mIrradiance, 0, kIrradianceSize, 2, 1.0f, 0.0f, 1, -1);
-    glBindSampler(0, 0);
+    for (int i = 0; i < 9; ++i) params.sh[i] = glm::vec4(sh[size_t(i)], 0.0f);
+    dispatch(mIrradiance, 0, kIrradianceSize, kEnvPrefilterIrradiance, 1.0f, 0.0f, 1, -1);
+    glBindSampler(kEnvUnitSource, 0);
     mBuilt = true;
 }
 
@@ -331,60 +352,52 @@ void Environment::shade(const EnvironmentSettings& s, GLuint normal, GLuint mate
                         int width, int height, const glm::mat4& invViewProj, const glm::vec3& eye, gl::GpuTimer& timer) const {
     auto pass = timer.scope("environment.shade");
     mShadeProg.use();
-    mShadeProg.set("uSize", glm::ivec2(width, height));
-    mShadeProg.set("uInvViewProj", invViewProj);
-    mShadeProg.set("uEye", eye);
-    mShadeProg.set("uIntensity", s.intensity);
-    mShadeProg.set("uRotation", s.rotation);
-    mShadeProg.set("uMipCount", int(mMips.size()));
-    std::vector<float> table(kMaxMips, 1.0f);
-    for (size_t m = 0; m < mMips.size(); ++m) table[m] = mMips[m].roughness;
-    glProgramUniform1fv(mShadeProg.id(), mShadeProg.location("uMipRoughness[0]"), kMaxMips, table.data());
-    const GLuint units[3] = {GLuint(shared::kUnitNormal), GLuint(shared::kUnitMaterial), GLuint(shared::kUnitDepth)};
+    EnvParams p = lookupParams(s, width, height, invViewProj, eye);
+    p.mipCount = int(mMips.size());
+    // Past the chain the table reads 1, the roughest lobe.
+    for (int m = 0; m < kEnvMaxMips; ++m) p.mipRoughness[m / 4][m % 4] = m < p.mipCount ? mMips[size_t(m)].roughness : 1.0f;
+    mBlock.set(p);
+    const GLuint units[3] = {GLuint(kUnitNormal), GLuint(kUnitMaterial), GLuint(kUnitDepth)};
     const GLuint textures[3] = {normal, material, depth};
     for (int i = 0; i < 3; ++i) {
         glBindTextureUnit(units[i], textures[i]);
         glBindSampler(units[i], mPoint.id());
     }
-    glBindTextureUnit(0, mPrefiltered.id());
-    glBindSampler(0, mCubeLinear.id());
-    glBindTextureUnit(3, mIrradiance.id());
-    glBindSampler(3, mCubeLinear.id());
-    glBindImageTexture(0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, specular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindTextureUnit(kEnvUnitPrefiltered, mPrefiltered.id());
+    glBindSampler(kEnvUnitPrefiltered, mCubeLinear.id());
+    glBindTextureUnit(kEnvUnitIrradiance, mIrradiance.id());
+    glBindSampler(kEnvUnitIrradiance, mCubeLinear.id());
+    glBindImageTexture(kEnvImageIndirect, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(kEnvImageSpecular, specular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups(width), groups(height), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    for (GLuint u : {units[0], units[1], units[2], 0u, 3u}) glBindSampler(u, 0);
+    for (GLuint u : {units[0], units[1], units[2], GLuint(kEnvUnitPrefiltered), GLuint(kEnvUnitIrradiance)}) glBindSampler(u, 0);
 }
 
 void Environment::sky(const EnvironmentSettings& s, GLuint depth, GLuint hdr, int width, int height, const glm::mat4& invViewProj,
                       const glm::vec3& eye, gl::GpuTimer& timer) const {
     auto pass = timer.scope("environment.sky");
     mSkyProg.use();
-    mSkyProg.set("uSize", glm::ivec2(width, height));
-    mSkyProg.set("uInvViewProj", invViewProj);
-    mSkyProg.set("uEye", eye);
-    mSkyProg.set("uIntensity", s.intensity);
-    mSkyProg.set("uRotation", s.rotation);
-    glBindTextureUnit(shared::kUnitDepth, depth);
-    glBindSampler(shared::kUnitDepth, mPoint.id());
-    glBindTextureUnit(0, mPrefiltered.id());
-    glBindSampler(0, mCubeLinear.id());
-    glBindImageTexture(0, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+    mBlock.set(lookupParams(s, width, height, invViewProj, eye));
+    glBindTextureUnit(kUnitDepth, depth);
+    glBindSampler(kUnitDepth, mPoint.id());
+    glBindTextureUnit(kEnvUnitPrefiltered, mPrefiltered.id());
+    glBindSampler(kEnvUnitPrefiltered, mCubeLinear.id());
+    glBindImageTexture(kEnvImageTarget, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(groups(width), groups(height), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-    glBindSampler(0, 0);
-    glBindSampler(shared::kUnitDepth, 0);
+    glBindSampler(kEnvUnitPrefiltered, 0);
+    glBindSampler(kUnitDepth, 0);
 }
 
 std::vector<DebugView> Environment::debugViews() const {
     std::vector<DebugView> v;
-    v.push_back({"brdfLUT", mLUT.id(), GL_TEXTURE_2D, shared::kViewColor, kLUTSize, kLUTSize});
+    v.push_back({"brdfLUT", mLUT.id(), GL_TEXTURE_2D, kViewColor, kLUTSize, kLUTSize});
     if (!ready()) return v;
-    v.push_back({"environment", mLatLong.id(), GL_TEXTURE_2D, shared::kViewColor, mImage.width, mImage.height});
-    v.push_back({"environment.prefiltered", mPrefiltered.id(), GL_TEXTURE_CUBE_MAP, shared::kViewCubeCross, mPrefiltered.width() * 4 / 3,
+    v.push_back({"environment", mLatLong.id(), GL_TEXTURE_2D, kViewColor, mImage.width, mImage.height});
+    v.push_back({"environment.prefiltered", mPrefiltered.id(), GL_TEXTURE_CUBE_MAP, kViewCubeCross, mPrefiltered.width() * 4 / 3,
                  mPrefiltered.width()});
-    v.push_back({"environment.irradiance", mIrradiance.id(), GL_TEXTURE_CUBE_MAP, shared::kViewCubeCross, kIrradianceSize * 4 / 3 * 4,
+    v.push_back({"environment.irradiance", mIrradiance.id(), GL_TEXTURE_CUBE_MAP, kViewCubeCross, kIrradianceSize * 4 / 3 * 4,
                  kIrradianceSize * 4});
     return v;
 }

@@ -42,9 +42,11 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/gl/uniform_block.h"
 #include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
 #include "gi/util/progress.h"
+#include "envmap/envmap_shared.h"
 
 #include <glm/glm.hpp>
 
@@ -125,6 +127,7 @@ public:
 
 private:
     gl::Program mToCubeProg, mPrefilterProg, mLUTProg, mShadeProg, mSkyProg;
+    gl::UniformBlock<shared::EnvParams> mBlock;  // every pass reads it
     gl::Sampler mLinear, mCubeLinear, mPoint;
     gl::Texture mLatLong, mSource, mPrefiltered, mIrradiance, mLUT;
     EnvironmentImage mImage;

@@ -126,7 +126,30 @@ ProgramHandle Program::build() const {
         throw Error("shader " + mName + ": link failed: " + firstLine(log.c_str()));
     }
     for (auto& sh : shaders) glDetachShader(program.id(), sh.id());
+    for (const BlockRequirement& b : mBlocks) checkBlock(program.id(), b);
     return program;
+}
+
+void Program::requireBlock(std::string block, GLuint binding, size_t bytes) {
+    BlockRequirement b{std::move(block), binding, bytes};
+    checkBlock(mProgram.id(), b);
+    mBlocks.push_back(std::move(b));
+}
+
+void Program::checkBlock(GLuint program, const BlockRequirement& b) const {
+    std::string files;
+    for (const StageSource& s : mStages) files += (files.empty() ? "" : ", ") + s.file;
+    const std::string where = "shader " + mName + ": uniform block " + b.name;
+    GLuint index = glGetProgramResourceIndex(program, GL_UNIFORM_BLOCK, b.name.c_str());
+    if (index == GL_INVALID_INDEX) throw Error(where + " is not declared in " + files + " (is its header included?)");
+    const GLenum props[2] = {GL_BUFFER_BINDING, GL_BUFFER_DATA_SIZE};
+    GLint values[2] = {};
+    glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, index, 2, props, 2, nullptr, values);
+    if (GLuint(values[0]) != b.binding)
+        throw Error(where + " is at binding " + std::to_string(values[0]) + ", the host binds it at " + std::to_string(b.binding));
+    if (size_t(values[1]) != b.bytes)
+        throw Error(where + " holds " + std::to_string(values[1]) + " bytes, the host's struct " + std::to_string(b.bytes) +
+                    " (a member the two languages lay out differently?)");
 }
 
 Program fullscreenProgram(const char* name, const char* frag, std::vector<std::string> defines) {

@@ -50,15 +50,28 @@ public:
     void set(const char* n, const glm::ivec3& v) const { glProgramUniform3iv(id(), location(n), 1, &v[0]); }
     void set(const char* n, const glm::mat4& v) const { glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, &v[0][0]); }
 
+    // Requires the uniform block `block` at `binding` with `bytes` of data (gl::UniformBlock's
+    // struct), now and at every reload: throws gi::Error naming the shader and the block when it
+    // is missing or differs, where a stray name or binding would otherwise read zeros silently.
+    void requireBlock(std::string block, GLuint binding, size_t bytes);
+
 private:
+    struct BlockRequirement {
+        std::string name;
+        GLuint binding;
+        size_t bytes;
+    };
+
     std::string mName;
     std::vector<StageSource> mStages;
     std::vector<std::string> mDefines;
+    std::vector<BlockRequirement> mBlocks;
     ProgramHandle mProgram;
     std::string mLog;
     mutable std::map<std::string, GLint, std::less<>> mLocations;
 
     ProgramHandle build() const;  // throws gi::Error
+    void checkBlock(GLuint program, const BlockRequirement& b) const;  // throws gi::Error
 };
 
 }  // namespace gi::gl

@@ -1,7 +1,6 @@
 #include "gi/ssao/ssao.h"
 
 #include "gi/util/error.h"
-#include "ssao/ssao_shared.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -67,7 +66,10 @@ std::array<glm::vec2, 16> ssaoNoise(uint32_t seed) {
 
 SSAO::SSAO()
     : mSSAOProg(gl::fullscreenProgram("ssao", "ssao/ssao.frag")),
-      mBlurProg(gl::fullscreenProgram("ssaoBlur", "ssao/ssao_blur.frag")) {
+      mBlurProg(gl::fullscreenProgram("ssaoBlur", "ssao/ssao_blur.frag")),
+      mBlock(kSSAOBlockName, kSSAOBlockBinding) {
+    mBlock.requireIn(mSSAOProg);
+    mBlock.requireIn(mBlurProg);
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mEmptyVAO = gl::VertexArray(vao);
@@ -95,11 +97,11 @@ void SSAO::resize(int width, int height) {
     gl::checkFramebuffer(mAOFBO.id(), "SSAO framebuffer incomplete");
 }
 
-void SSAO::uploadKernel(int count) {
+void SSAO::buildKernel(int count) {
     std::vector<glm::vec3> kernel = ssaoKernel(count);
-    glProgramUniform3fv(mSSAOProg.id(), mSSAOProg.location("uKernel"), count, &kernel[0][0]);
+    for (int i = 0; i < count; ++i) mParams.kernel[i] = glm::vec4(kernel[size_t(i)], 0.0f);
     std::array<glm::vec2, 16> noise = ssaoNoise();
-    glProgramUniform2fv(mSSAOProg.id(), mSSAOProg.location("uNoise"), 16, &noise[0][0]);
+    for (int k = 0; k < 16; ++k) mParams.noise[k] = glm::vec4(noise[size_t(k)], 0.0f, 0.0f);
     mKernelCount = count;
 }
 
@@ -114,9 +116,18 @@ void SSAO::execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalText
         glClearTexImage(mAO.id(), 0, GL_RED, GL_FLOAT, &one);
         return;
     }
-    // Settings come validated from presets; the clamp only guards the uniform array's bound.
+    // Settings come validated from presets; the clamp only guards the kernel array's bound.
     int count = std::clamp(s.sampleCount, 1, kSSAOMaxSamples);
-    if (count != mKernelCount) uploadKernel(count);
+    if (count != mKernelCount) buildKernel(count);
+    mParams.sampleCount = count;
+    mParams.radius = s.radius;
+    mParams.bias = s.bias;
+    mParams.blurRadius = std::max(s.blurRadius, 0);
+    mParams.strength = std::max(s.strength, 0.0f);
+    mParams.view = view;
+    mParams.proj = proj;
+    mParams.invProj = glm::inverse(proj);
+    mBlock.set(mParams);
 
     glViewport(0, 0, width, height);
     glDisable(GL_DEPTH_TEST);
@@ -134,12 +145,6 @@ void SSAO::execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalText
         glBindTextureUnit(kUnitNormal, normalTexture);
         glBindSampler(kUnitNormal, mPointSampler.id());
         mSSAOProg.use();
-        mSSAOProg.set("uView", view);
-        mSSAOProg.set("uProj", proj);
-        mSSAOProg.set("uInvProj", glm::inverse(proj));
-        mSSAOProg.set("uSampleCount", count);
-        mSSAOProg.set("uRadius", s.radius);
-        mSSAOProg.set("uBias", s.bias);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glBindSampler(kUnitNormal, 0);
     }
@@ -149,8 +154,6 @@ void SSAO::execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalText
         glBindTextureUnit(kUnitSource, mRaw.id());
         glBindSampler(kUnitSource, mPointSampler.id());
         mBlurProg.use();
-        mBlurProg.set("uBlurRadius", std::max(s.blurRadius, 0));
-        mBlurProg.set("uStrength", std::max(s.strength, 0.0f));
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glBindSampler(kUnitSource, 0);
     }
@@ -188,7 +191,6 @@ bool SSAO::reloadShaders(std::string& log) {
             log += p->log() + "\n";
         }
     }
-    mKernelCount = 0;  // a rebuilt program starts with empty uniforms
     return ok;
 }
 

@@ -54,8 +54,10 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/gl/uniform_block.h"
 #include "gi/render/pass.h"
 #include "gi/ssao/ssao_settings.h"
+#include "ssao/ssao_shared.h"
 
 #include <glm/glm.hpp>
 
@@ -102,15 +104,17 @@ public:
 
 private:
     gl::Program mSSAOProg, mBlurProg;
+    gl::UniformBlock<shared::SSAOParams> mBlock;  // both passes read it
+    shared::SSAOParams mParams{};  // the kernel and noise persist between frames
     gl::VertexArray mEmptyVAO;
     gl::Sampler mPointSampler;
     gl::Texture mRaw, mAO;
     gl::Framebuffer mRawFBO, mAOFBO;
     int mWidth = 0, mHeight = 0;
-    int mKernelCount = 0;  // sample count of the kernel now in mSSAOProg's uniforms
+    int mKernelCount = 0;  // sample count of the kernel now in mParams
 
     void resize(int width, int height);
-    void uploadKernel(int count);
+    void buildKernel(int count);
 };
 
 }  // namespace gi

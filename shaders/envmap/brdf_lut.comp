@@ -5,19 +5,17 @@
 #include "common/ggx.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rg16f) uniform writeonly image2D uLUT;
-uniform int uSize;
-uniform int uSamples;
+layout(binding = kEnvImageTarget, rg16f) uniform writeonly image2D uLUT;
 
 void main() {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(id, ivec2(uSize)))) return;
-    float NoV = (float(id.x) + 0.5) / float(uSize);
-    float roughness = (float(id.y) + 0.5) / float(uSize);
+    if (any(greaterThanEqual(id, ivec2(uEnv.size)))) return;
+    float NoV = (float(id.x) + 0.5) / float(uEnv.size);
+    float roughness = (float(id.y) + 0.5) / float(uEnv.size);
     float a = max(roughness * roughness, 0.002);
     vec3 V = vec3(sqrt(1.0 - NoV * NoV), 0.0, NoV);
     float A = 0.0, B = 0.0;
-    uint n = uint(uSamples);
+    uint n = uint(uEnv.samples);
     for (uint i = 0u; i < n; ++i) {
         vec3 H = sampleGGX(hammersley(i, n), a);
         vec3 L = reflect(-V, H);

@@ -1,7 +1,9 @@
 // Environment map helpers shared by the environment passes: the latlong convention of
 // gi/envmap/envmap_image.h (latLongUV), GL cube face directions, the Hammersley sequence and
 // GGX importance sampling (Karis 2013), and the mip of a prefiltered chain for a roughness.
+// Through envmap/envmap_shared.h every pass has the constants and the parameter block uEnv.
 #include "common/shared.h"
+#include "envmap/envmap_shared.h"
 
 vec3 envRotateY(vec3 d, float deg) {
     float a = radians(deg), c = cos(a), s = sin(a);
@@ -53,11 +55,14 @@ vec3 sampleGGX(vec2 xi, float a) {
     return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
 }
 
-// The mip (fractional) of a chain whose mip m holds roughness table[m], for perceptual
-// roughness r: piecewise linear in the table, as the seed's shading (Alg. 8) does.
-float mipForRoughness(float r, float table[32], int count) {
-    if (r <= table[0]) return 0.0;
-    for (int m = 0; m + 1 < count; ++m)
-        if (r <= table[m + 1]) return float(m) + (r - table[m]) / max(table[m + 1] - table[m], 1e-6);
+// The mip (fractional) of a chain whose mip m holds roughness table[m / 4][m % 4] (packed as
+// EnvParams::mipRoughness), for perceptual roughness r: piecewise linear in the table, as the
+// seed's shading (Alg. 8) does.
+float mipForRoughness(float r, vec4 table[kEnvMaxMips / 4], int count) {
+    if (r <= table[0][0]) return 0.0;
+    for (int m = 0; m + 1 < count; ++m) {
+        float lo = table[m / 4][m % 4], hi = table[(m + 1) / 4][(m + 1) % 4];
+        if (r <= hi) return float(m) + (r - lo) / max(hi - lo, 1e-6);
+    }
     return float(count - 1);
 }

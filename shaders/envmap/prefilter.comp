@@ -1,59 +1,51 @@
 // One mip of the prefiltered environment: per texel direction N (with V = R = N, the split-sum's
-// assumption), the radiance of the lobe of roughness uRoughness around it.
-//   GGX (uMode 0): importance sampled half vectors, L = reflect(-N, H), weights N.L (Karis 2013),
+// assumption), the radiance of the lobe of roughness uEnv.roughness around it.
+//   GGX (kEnvPrefilterGGX): importance sampled half vectors, L = reflect(-N, H), weights N.L (Karis 2013),
 //     each sample read from the source mip whose texel matches the sample's solid angle
 //     (filtered importance sampling, Krivanek and Colbert 2008), so few samples stay smooth.
-//   Beckmann cone (uMode 1, seed 004 Alg. 6): directions through a uniform disk of radius
-//     uDiskRadius (tan of the lobe aperture) on the plane tangent at N, averaged (normalised by
+//   Beckmann cone (kEnvPrefilterBeckmannCone, seed 004 Alg. 6): directions through a uniform
+//     disk of radius uEnv.diskRadius (tan of the lobe aperture) on the plane tangent at N, averaged (normalised by
 //     the count, where the seed multiplies by pi r^2 and brightens the rough mips).
-//   Irradiance (uMode 2): E / pi from the 9 SH coefficients uSH (gi/envmap/envmap_image.h
-//     irradianceSH: projected on the CPU from every texel, exact for the clamped cosine's bands).
-// uRoughness 0 copies the source.
+//   Irradiance (kEnvPrefilterIrradiance): E / pi from the 9 SH coefficients uEnv.sh
+//     (gi/envmap/envmap_image.h irradianceSH: projected on the CPU from every texel, exact for
+//     the clamped cosine's bands).
+// Roughness 0 copies the source.
 #include "envmap/envmap.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform samplerCube uSource;  // mip 0 = the map, full mip chain
-layout(binding = 0, rgba16f) uniform writeonly imageCube uDest;
-
-uniform int uSize;        // this mip's face size
-uniform int uRowOffset;   // first row of this dispatch's band (a large mip is cut into bands)
-uniform int uSourceSize;  // the source's mip-0 face size
-uniform int uMode;
-uniform float uRoughness;
-uniform float uDiskRadius;
-uniform int uSamples;
-uniform vec3 uSH[9];
+layout(binding = kEnvUnitSource) uniform samplerCube uSource;  // mip 0 = the map, full mip chain
+layout(binding = kEnvImageTarget, rgba16f) uniform writeonly imageCube uDest;
 
 float sourceMip(float pdf) {
-    float saSample = 1.0 / (float(uSamples) * max(pdf, 1e-8));
-    float saTexel = 4.0 * kPi / (6.0 * float(uSourceSize * uSourceSize));
+    float saSample = 1.0 / (float(uEnv.samples) * max(pdf, 1e-8));
+    float saTexel = 4.0 * kPi / (6.0 * float(uEnv.sourceSize * uEnv.sourceSize));
     return max(0.5 * log2(saSample / saTexel) + 1.0, 0.0);
 }
 
 void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(0, uRowOffset, 0);
-    if (id.x >= uSize || id.y >= uSize) return;
-    vec3 N = cubeDirection(id.z, id.xy, uSize);
-    if (uMode == 2) {
+    ivec3 id = ivec3(gl_GlobalInvocationID) + ivec3(0, uEnv.rowOffset, 0);
+    if (id.x >= uEnv.size || id.y >= uEnv.size) return;
+    vec3 N = cubeDirection(id.z, id.xy, uEnv.size);
+    if (uEnv.mode == kEnvPrefilterIrradiance) {
         float b[9] = float[9](0.282095, 0.488603 * N.y, 0.488603 * N.z, 0.488603 * N.x, 1.092548 * N.x * N.y, 1.092548 * N.y * N.z,
                               0.315392 * (3.0 * N.z * N.z - 1.0), 1.092548 * N.x * N.z, 0.546274 * (N.x * N.x - N.y * N.y));
         vec3 e = vec3(0.0);
-        for (int i = 0; i < 9; ++i) e += uSH[i] * b[i];
+        for (int i = 0; i < 9; ++i) e += uEnv.sh[i].xyz * b[i];
         imageStore(uDest, id, vec4(max(e, vec3(0.0)), 1.0));
         return;
     }
-    if (uRoughness <= 0.0) {
+    if (uEnv.roughness <= 0.0) {
         imageStore(uDest, id, vec4(textureLod(uSource, N, 0.0).rgb, 1.0));
         return;
     }
     mat3 frame = envFrame(N);
     vec3 sum = vec3(0.0);
     float total = 0.0;
-    uint n = uint(uSamples);
+    uint n = uint(uEnv.samples);
     for (uint i = 0u; i < n; ++i) {
         vec2 xi = hammersley(i, n);
-        if (uMode == 0) {
-            float a = uRoughness * uRoughness;
+        if (uEnv.mode == kEnvPrefilterGGX) {
+            float a = uEnv.roughness * uEnv.roughness;
             vec3 H = frame * sampleGGX(xi, a);
             vec3 L = reflect(-N, H);
             float NoL = dot(N, L);
@@ -63,11 +55,11 @@ void main() {
             float pdf = a2 / (kPi * d * d) / 4.0;  // D * NoH / (4 VoH) with V = N
             sum += textureLod(uSource, L, sourceMip(pdf)).rgb * NoL;
             total += NoL;
-        } else if (uMode == 1) {
+        } else if (uEnv.mode == kEnvPrefilterBeckmannCone) {
             // Uniform disk (concentric would stratify better; Hammersley already does).
-            float r = uDiskRadius * sqrt(xi.y), phi = 2.0 * kPi * xi.x;
+            float r = uEnv.diskRadius * sqrt(xi.y), phi = 2.0 * kPi * xi.x;
             vec3 L = normalize(frame * vec3(r * cos(phi), r * sin(phi), 1.0));
-            float area = kPi * uDiskRadius * uDiskRadius;
+            float area = kPi * uEnv.diskRadius * uEnv.diskRadius;
             float cosL = dot(N, L);
             float pdf = cosL * cosL * cosL / area;  // disk density carried onto the sphere
             sum += textureLod(uSource, L, sourceMip(pdf)).rgb;

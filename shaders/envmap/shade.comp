@@ -9,36 +9,29 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormal;
 layout(binding = kUnitMaterial) uniform sampler2D uMaterial;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
-layout(binding = 0) uniform samplerCube uPrefiltered;
-layout(binding = 3) uniform samplerCube uIrradiance;
-layout(binding = 0, rgba16f) uniform writeonly image2D uIndirect;
-layout(binding = 1, rgba16f) uniform writeonly image2D uSpecular;
-
-uniform ivec2 uSize;
-uniform mat4 uInvViewProj;
-uniform vec3 uEye;
-uniform float uIntensity;
-uniform float uRotation;
-uniform float uMipRoughness[32];
-uniform int uMipCount;
+layout(binding = kEnvUnitPrefiltered) uniform samplerCube uPrefiltered;
+layout(binding = kEnvUnitIrradiance) uniform samplerCube uIrradiance;
+layout(binding = kEnvImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
+layout(binding = kEnvImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(px, uSize))) return;
+    ivec2 size = ivec2(uEnv.width, uEnv.height);
+    if (any(greaterThanEqual(px, size))) return;
     float depth = texelFetch(uDepth, px, 0).r;
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
     if (depth < 1.0) {
-        vec2 uv = (vec2(px) + 0.5) / vec2(uSize);
-        vec4 w = uInvViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        vec2 uv = (vec2(px) + 0.5) / vec2(size);
+        vec4 w = uEnv.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         vec3 P = w.xyz / w.w;
         vec3 N = normalize(texelFetch(uNormal, px, 0).xyz);
-        vec3 V = normalize(uEye - P);
+        vec3 V = normalize(uEnv.eye.xyz - P);
         if (dot(N, V) < 0.0) N = -N;  // two-sided, as the direct light
         vec3 R = reflect(-V, N);
         float roughness = texelFetch(uMaterial, px, 0).r;
-        diffuse = uIntensity * textureLod(uIrradiance, envRotateY(N, -uRotation), 0.0).rgb;
-        float lod = mipForRoughness(roughness, uMipRoughness, uMipCount);
-        specular = uIntensity * textureLod(uPrefiltered, envRotateY(R, -uRotation), lod).rgb;
+        diffuse = uEnv.intensity * textureLod(uIrradiance, envRotateY(N, -uEnv.rotation), 0.0).rgb;
+        float lod = mipForRoughness(roughness, uEnv.mipRoughness, uEnv.mipCount);
+        specular = uEnv.intensity * textureLod(uPrefiltered, envRotateY(R, -uEnv.rotation), lod).rgb;
     }
     imageStore(uIndirect, px, vec4(diffuse, 1.0));
     imageStore(uSpecular, px, vec4(specular, 1.0));

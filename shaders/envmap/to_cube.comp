@@ -3,14 +3,13 @@
 #include "envmap/envmap.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(binding = 0) uniform sampler2D uLatLong;
-layout(binding = 0, rgba16f) uniform writeonly imageCube uCube;
-uniform int uSize;
+layout(binding = kEnvUnitSource) uniform sampler2D uLatLong;
+layout(binding = kEnvImageTarget, rgba16f) uniform writeonly imageCube uCube;
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
-    if (id.x >= uSize || id.y >= uSize) return;
-    vec3 d = cubeDirection(id.z, id.xy, uSize);
+    if (id.x >= uEnv.size || id.y >= uEnv.size) return;
+    vec3 d = cubeDirection(id.z, id.xy, uEnv.size);
     vec2 uv = latLongUV(d, 0.0);
     imageStore(uCube, id, vec4(textureLod(uLatLong, vec2(uv.x, 1.0 - uv.y), 0.0).rgb, 1.0));  // stored bottom row first
 }

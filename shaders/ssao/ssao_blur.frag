@@ -1,14 +1,12 @@
 // SSAO blur (seed 000 Sec 3.5.1: "banding is later removed in a separate blur pass"): a box
-// 2 * uBlurRadius pixels wide, offsets -r..r-1, so radius 2 covers the 4x4 noise tile exactly
-// and every window averages all 16 rotations. Background pixels are left out of the average
-// and stay 1. Then AO = pow(visibility, uStrength), with strength 0 meaning no occlusion.
+// 2 * uSSAO.blurRadius pixels wide, offsets -r..r-1, so radius 2 covers the 4x4 noise tile
+// exactly and every window averages all 16 rotations. Background pixels are left out of the
+// average and stay 1. Then AO = pow(visibility, uSSAO.strength), strength 0 meaning no occlusion.
 #include "common/shared.h"
+#include "ssao/ssao_shared.h"
 
 layout(binding = kUnitSource) uniform sampler2D uRaw;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
-
-uniform int uBlurRadius;
-uniform float uStrength;
 
 out float oAO;
 
@@ -19,8 +17,8 @@ void main() {
         oAO = 1.0;
         return;
     }
-    int lo = uBlurRadius > 0 ? -uBlurRadius : 0;
-    int hi = uBlurRadius > 0 ? uBlurRadius - 1 : 0;
+    int lo = uSSAO.blurRadius > 0 ? -uSSAO.blurRadius : 0;
+    int hi = uSSAO.blurRadius > 0 ? uSSAO.blurRadius - 1 : 0;
     float sum = 0.0;
     float count = 0.0;
     for (int y = lo; y <= hi; ++y) {
@@ -35,5 +33,5 @@ void main() {
     // The pixel itself is always in its window, so count >= 1.
     float visibility = sum / count;
     // pow(0, 0) is undefined in GLSL: strength 0 is handled apart.
-    oAO = uStrength > 0.0 ? pow(visibility, uStrength) : 1.0;
+    oAO = uSSAO.strength > 0.0 ? pow(visibility, uSSAO.strength) : 1.0;
 }

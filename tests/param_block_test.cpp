@@ -1,0 +1,211 @@
+// Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h and
+// shaders/envmap/envmap_shared.h against the layout the driver gives the linked programs' blocks
+// (size, each member's offset, array and matrix strides), a block laid out differently caught by
+// that comparison, and a block a program names, binds or sizes differently from the host refused
+// at construction and at reload with the shader and the block in the message.
+#include "gi/envmap/environment.h"
+#include "gi/gl/uniform_block.h"
+#include "gi/ssao/ssao.h"
+#include "gi/util/error.h"
+#include "test_util.h"
+
+#include <cstddef>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <type_traits>
+
+namespace gi {
+namespace {
+
+using namespace shared;
+
+// A member of a C++ parameter struct as GL names it: arrays by their first element.
+struct Member {
+    std::string name;
+    size_t offset;
+    size_t arrayStride;  // 0 for a member that is no array
+};
+
+template <class F>
+Member member(const std::string& name, size_t offset) {
+    if constexpr (std::is_array_v<F>) return {name + "[0]", offset, sizeof(std::remove_extent_t<F>)};
+    else return {name, offset, 0};
+}
+#define GI_MEMBER(T, f) member<decltype(T::f)>(#f, offsetof(T, f))
+
+std::vector<Member> ssaoMembers() {
+    using T = SSAOParams;
+    return {GI_MEMBER(T, sampleCount), GI_MEMBER(T, radius), GI_MEMBER(T, bias),   GI_MEMBER(T, blurRadius),
+            GI_MEMBER(T, strength),    GI_MEMBER(T, pad0),   GI_MEMBER(T, pad1),   GI_MEMBER(T, pad2),
+            GI_MEMBER(T, view),        GI_MEMBER(T, proj),   GI_MEMBER(T, invProj), GI_MEMBER(T, kernel),
+            GI_MEMBER(T, noise)};
+}
+
+std::vector<Member> envMembers() {
+    using T = EnvParams;
+    return {GI_MEMBER(T, invViewProj), GI_MEMBER(T, eye),        GI_MEMBER(T, width),     GI_MEMBER(T, height),
+            GI_MEMBER(T, intensity),   GI_MEMBER(T, rotation),   GI_MEMBER(T, mipCount),  GI_MEMBER(T, pad0),
+            GI_MEMBER(T, pad1),        GI_MEMBER(T, pad2),       GI_MEMBER(T, mipRoughness), GI_MEMBER(T, size),
+            GI_MEMBER(T, rowOffset),   GI_MEMBER(T, sourceSize), GI_MEMBER(T, mode),      GI_MEMBER(T, roughness),
+            GI_MEMBER(T, diskRadius),  GI_MEMBER(T, samples),    GI_MEMBER(T, pad3),      GI_MEMBER(T, sh)};
+}
+
+// Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per
+// difference; empty when they agree. Members are named "<instance>.<member>" by GL.
+std::vector<std::string> layoutDifferences(GLuint program, const char* block, const std::string& instance, size_t bytes,
+                                           const std::vector<Member>& members) {
+    std::vector<std::string> diffs;
+    GLuint index = glGetProgramResourceIndex(program, GL_UNIFORM_BLOCK, block);
+    if (index == GL_INVALID_INDEX) return {std::string("no block ") + block};
+    const GLenum blockProps[2] = {GL_BUFFER_DATA_SIZE, GL_NUM_ACTIVE_VARIABLES};
+    GLint blockValues[2] = {};
+    glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, index, 2, blockProps, 2, nullptr, blockValues);
+    if (size_t(blockValues[0]) != bytes)
+        diffs.push_back("block size " + std::to_string(blockValues[0]) + ", C++ " + std::to_string(bytes));
+    std::vector<GLint> variables(static_cast<size_t>(blockValues[1]));
+    const GLenum activeProp = GL_ACTIVE_VARIABLES;
+    glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, index, 1, &activeProp, GLsizei(variables.size()), nullptr, variables.data());
+
+    struct Layout {
+        GLint offset, arrayStride, matrixStride, rowMajor, type;
+    };
+    std::map<std::string, Layout> gl;
+    for (GLint v : variables) {
+        char name[256];
+        glGetProgramResourceName(program, GL_UNIFORM, GLuint(v), sizeof(name), nullptr, name);
+        const GLenum props[5] = {GL_OFFSET, GL_ARRAY_STRIDE, GL_MATRIX_STRIDE, GL_IS_ROW_MAJOR, GL_TYPE};
+        GLint values[5] = {};
+        glGetProgramResourceiv(program, GL_UNIFORM, GLuint(v), 5, props, 5, nullptr, values);
+        gl[name] = {values[0], values[1], values[2], values[3], values[4]};
+    }
+    for (const Member& m : members) {
+        std::string name = instance + "." + m.name;
+        auto it = gl.find(name);
+        if (it == gl.end()) {
+            diffs.push_back(name + " not in the block");
+            continue;
+        }
+        const Layout& l = it->second;
+        if (size_t(l.offset) != m.offset)
+            diffs.push_back(name + " at " + std::to_string(l.offset) + ", C++ " + std::to_string(m.offset));
+        if (size_t(std::max(l.arrayStride, 0)) != m.arrayStride)
+            diffs.push_back(name + " array stride " + std::to_string(l.arrayStride) + ", C++ " + std::to_string(m.arrayStride));
+        // glm's mat4 is four vec4 columns.
+        if (l.type == GL_FLOAT_MAT4 && (l.matrixStride != GLint(sizeof(glm::vec4)) || l.rowMajor))
+            diffs.push_back(name + " is not column-major with vec4 columns");
+        gl.erase(it);
+    }
+    for (const auto& [name, l] : gl) diffs.push_back(name + " at " + std::to_string(l.offset) + " has no C++ member");
+    return diffs;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+    std::string s;
+    for (const std::string& l : lines) s += l + "\n";
+    return s;
+}
+
+class ParamBlock : public test::GLTest {};
+
+TEST_F(ParamBlock, SSAOLayoutMatchesTheDriver) {
+    for (const auto& [name, frag] : {std::pair{"ssao", "ssao/ssao.frag"}, std::pair{"ssaoBlur", "ssao/ssao_blur.frag"}}) {
+        gl::Program p = gl::fullscreenProgram(name, frag);
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kSSAOBlockName, "uSSAO", sizeof(SSAOParams), ssaoMembers());
+        EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);
+    }
+}
+
+TEST_F(ParamBlock, EnvironmentLayoutMatchesTheDriver) {
+    for (const char* comp : {"to_cube", "prefilter", "brdf_lut", "shade", "sky"}) {
+        gl::Program p(comp, {{GL_COMPUTE_SHADER, std::string("envmap/") + comp + ".comp"}});
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kEnvBlockName, "uEnv", sizeof(EnvParams), envMembers());
+        EXPECT_TRUE(diffs.empty()) << comp << ":\n" << joined(diffs);
+    }
+}
+
+// A copy of the shader tree to edit, made the shader root for the test's lifetime.
+class ParamBlockShaders : public test::GLTest {
+protected:
+    std::filesystem::path mDir;
+    void SetUp() override {
+        test::GLTest::SetUp();
+        mDir = test::tempDir() / "shaders";
+        std::filesystem::copy(GI_SHADER_DIR, mDir, std::filesystem::copy_options::recursive);
+        setenv("GI_SHADER_DIR", mDir.c_str(), 1);
+    }
+    void TearDown() override {
+        unsetenv("GI_SHADER_DIR");
+        test::GLTest::TearDown();
+    }
+    // Replaces `from` (which must occur) by `to` in the copy of `file`.
+    void edit(const std::string& file, const std::string& from, const std::string& to) {
+        std::ifstream in(mDir / file);
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string s = text.str();
+        size_t at = s.find(from);
+        ASSERT_NE(at, std::string::npos) << from << " not in " << file;
+        s.replace(at, from.size(), to);
+        std::ofstream(mDir / file) << s;
+    }
+    template <class Make>
+    std::string errorOf(Make&& make) {
+        try {
+            make();
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "no error";
+    }
+};
+
+// The comparison above can fail: a vec3 where C++ has three floats moves every later member in
+// GLSL (std140 aligns a vec3 to 16 bytes), and the block grows.
+TEST_F(ParamBlockShaders, LayoutThatDiffersFromCppIsCaught) {
+    edit("ssao/ssao_shared.h", "    float pad0;\n    float pad1;\n    float pad2;\n", "    vec3 pad0;\n");
+    gl::Program p = gl::fullscreenProgram("ssao", "ssao/ssao.frag");
+    std::string diffs = joined(layoutDifferences(p.id(), kSSAOBlockName, "uSSAO", sizeof(SSAOParams), ssaoMembers()));
+    EXPECT_NE(diffs.find("block size 1520, C++ 1504"), std::string::npos) << diffs;
+    EXPECT_NE(diffs.find("uSSAO.view at 48, C++ 32"), std::string::npos) << diffs;
+    EXPECT_NE(diffs.find("uSSAO.pad1 not in the block"), std::string::npos) << diffs;
+    // The pass refuses it at construction, naming the shader and the block.
+    std::string msg = errorOf([] { SSAO ssao; });
+    EXPECT_NE(msg.find("shader ssao: uniform block SSAOBlock holds 1520 bytes"), std::string::npos) << msg;
+}
+
+TEST_F(ParamBlockShaders, BlockAtAnotherBindingIsAnErrorNamingTheShader) {
+    edit("envmap/envmap_shared.h", "binding = kEnvBlockBinding", "binding = 3");
+    std::string msg = errorOf([] { Environment env; });
+    EXPECT_NE(msg.find("shader environment.toCube: uniform block EnvBlock is at binding 3, the host binds it at 0"), std::string::npos)
+        << msg;
+}
+
+TEST_F(ParamBlockShaders, MisspeltOrMissingBlockIsAnErrorNamingTheShader) {
+    edit("ssao/ssao_shared.h", "uniform SSAOBlock", "uniform SSAOBlok");
+    std::string msg = errorOf([] { SSAO ssao; });
+    EXPECT_NE(msg.find("shader ssao: uniform block SSAOBlock is not declared in common/fullscreen.vert, ssao/ssao.frag"),
+              std::string::npos)
+        << msg;
+    // A program that never includes the header.
+    std::ofstream(mDir / "plain.comp") << "layout(local_size_x = 1) in;\nvoid main() {}\n";
+    gl::Program plain("plain", {{GL_COMPUTE_SHADER, "plain.comp"}});
+    gl::UniformBlock<EnvParams> block(kEnvBlockName, kEnvBlockBinding);
+    msg = errorOf([&] { block.requireIn(plain); });
+    EXPECT_NE(msg.find("shader plain: uniform block EnvBlock is not declared in plain.comp"), std::string::npos) << msg;
+}
+
+// A reload checks the blocks again: a bad one keeps the last good program and says why.
+TEST_F(ParamBlockShaders, ReloadRechecksTheBlock) {
+    SSAO ssao;
+    edit("ssao/ssao_shared.h", "binding = kSSAOBlockBinding", "binding = 2");
+    std::string log;
+    EXPECT_FALSE(ssao.reloadShaders(log));
+    EXPECT_NE(log.find("shader ssaoBlur: uniform block SSAOBlock is at binding 2"), std::string::npos) << log;
+    edit("ssao/ssao_shared.h", "binding = 2", "binding = kSSAOBlockBinding");
+    log.clear();
+    EXPECT_TRUE(ssao.reloadShaders(log)) << log;
+}
+
+}  // namespace
+}  // namespace gi
