@@ -15,6 +15,6 @@ for dir in "$before"/*/; do
   hdr=$(idiff -a "$dir/image.exr" "$after/$name/image.exr" 2>&1 | awk '/Max error/ {print $4}')
   png=$(idiff -a "$dir/image.png" "$after/$name/image.png" 2>&1 | awk '/Max error/ {print $4}')
   printf '%-28s %14s %14s\n' "$name" "${hdr:-0}" "${png:-0}"
-  [ "${hdr:-0}" = 0 ] || status=1
+  [ "${hdr:-0}" = 0 ] && [ "${png:-0}" = 0 ] || status=1
 done
 exit $status
