@@ -7,7 +7,6 @@
 #include "gi/render/renderer.h"
 #include "gi/render/strokes.h"
 #include "common/shared.h"
-#include "gi/envmap/environment.h"
 #include "gi/gl/debug.h"
 #include "gi/metrics/metrics.h"
 #include "gi/reference/reference_cache.h"
@@ -189,15 +188,6 @@ int run(int argc, char** argv) {
     gi::json volumes = gi::json::array();
     for (const auto& v : renderer.volumeMemory())
         volumes.push_back({{"name", v.name}, {"format", v.format}, {"bytes", v.bytes}});
-    // The environment's prefilter, mip by mip (the Roughness Mips panel shows the same).
-    gi::json environment = nullptr;
-    const gi::Environment* env = renderer.activePass<gi::Environment>();
-    if (frame.environment.enabled && env && env->ready()) {
-        gi::json mips = gi::json::array();
-        for (const auto& m : env->mips())
-            mips.push_back({{"roughness", m.roughness}, {"size", m.size}, {"samples", m.samples}, {"diskRadius", m.diskRadius}, {"ms", m.ms}});
-        environment = {{"source", env->image().source}, {"loadMs", env->loadMs()}, {"mips", mips}};
-    }
     gi::json stats = {{"input", input},
                       {"width", width},
                       {"height", height},
@@ -207,9 +197,25 @@ int run(int argc, char** argv) {
                       {"gpuMsTotal", total},
                       {"memoryBytes", renderer.memoryBytes()},
                       {"volumes", volumes},
-                      {"environment", environment},
                       {"scene", {{"name", scene.name}, {"triangles", scene.triangleCount()}, {"warnings", scene.warnings}}},
                       {"settings", gi::presetToJson(preset)}};
+    // What each pass reports beyond time and memory (the environment's prefilter, mip by mip),
+    // under its name.
+    for (const auto& [name, report] : renderer.passReports(frame)) {
+        gi::json r = gi::json::object();
+        for (const auto& [key, text] : report.texts) r[key] = text;
+        for (const auto& [key, value] : report.numbers) r[key] = value;
+        if (!report.tableName.empty()) {
+            gi::json rows = gi::json::array();
+            for (const std::vector<double>& row : report.rows) {
+                gi::json entry = gi::json::object();
+                for (size_t c = 0; c < report.columns.size() && c < row.size(); ++c) entry[report.columns[c]] = row[c];
+                rows.push_back(entry);
+            }
+            r[report.tableName] = rows;
+        }
+        stats[name] = r;
+    }
     if (views) {
         fs::create_directories(out / "views");
         for (const auto& v : renderer.debugViews()) {

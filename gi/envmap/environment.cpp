@@ -342,6 +342,17 @@ std::vector<Previewer> Environment::previewers(const FrameSettings& fs) const {
     return out;
 }
 
+PassReport Environment::report(const FrameSettings& fs) const {
+    PassReport r;
+    if (!fs.environment.enabled || !ready()) return r;
+    r.texts = {{"source", mImage.source}};
+    r.numbers = {{"loadMs", mLoadMs}};
+    r.tableName = "mips";
+    r.columns = {"roughness", "size", "samples", "diskRadius", "ms"};
+    for (const MipInfo& m : mMips) r.rows.push_back({m.roughness, double(m.size), double(m.samples), m.diskRadius, m.ms});
+    return r;
+}
+
 std::unique_ptr<Pass> EnvironmentSettings::createPass() { return std::make_unique<Environment>(); }
 size_t EnvironmentSettings::estimateBytes(const FrameSettings& fs) { return Environment::estimateBytes(fs.environment); }
 void EnvironmentSettings::checkTime(const FrameSettings& fs) {

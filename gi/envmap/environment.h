@@ -112,6 +112,9 @@ public:
     // all of them on one sheet, four to a row, mip 0 at the top left, each labelled with its
     // index (yellow) and roughness (white).
     std::vector<Previewer> previewers(const FrameSettings& fs) const override;
+    // The map's source and load time, and the prefilter mip by mip (the Roughness mips panel
+    // shows the same): roughness, size, samples, diskRadius, ms.
+    PassReport report(const FrameSettings& fs) const override;
     bool reloadShaders(std::string& log) override;
 
     // The chain the settings give: its mip count (one per mipRoughness entry, at most the cube's

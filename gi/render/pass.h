@@ -131,6 +131,17 @@ struct Previewer {
     std::function<std::vector<GlyphLine>(const PreviewContext&)> overlay;
 };
 
+// Figures a pass reports beside its timers (gi-render's stats.json, under the pass's name):
+// named texts and numbers, and one table of rows (the environment's mips). Empty: nothing to say.
+struct PassReport {
+    std::vector<std::pair<std::string, std::string>> texts;
+    std::vector<std::pair<std::string, double>> numbers;
+    std::string tableName;
+    std::vector<std::string> columns;
+    std::vector<std::vector<double>> rows;  // each as long as columns
+    bool empty() const { return texts.empty() && numbers.empty() && rows.empty(); }
+};
+
 class Pass {
 public:
     virtual ~Pass() = default;
@@ -142,6 +153,8 @@ public:
     virtual std::vector<DebugView> debugViews() const { return {}; }
     // Its previewers when active with these settings.
     virtual std::vector<Previewer> previewers(const FrameSettings&) const { return {}; }
+    // What it did in the last frame beyond time and memory.
+    virtual PassReport report(const FrameSettings&) const { return {}; }
     // Memory held by the pass of that timer name (0 for names it does not own).
     virtual size_t passMemory(const std::string& pass) const = 0;
     virtual size_t memoryBytes() const = 0;

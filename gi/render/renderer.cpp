@@ -555,6 +555,14 @@ const Pass* Renderer::technique() const {
     return nullptr;
 }
 
+std::vector<std::pair<std::string, PassReport>> Renderer::passReports(const FrameSettings& fs) const {
+    std::vector<std::pair<std::string, PassReport>> out;
+    for (const ActivePass& p : mPasses)
+        if (p.info)
+            if (PassReport r = p.pass->report(fs); !r.empty()) out.emplace_back(std::string(p.info->name), std::move(r));
+    return out;
+}
+
 std::vector<VolumeMemory> Renderer::volumeMemory() const {
     std::vector<VolumeMemory> out;
     for (const ActivePass& p : mPasses)

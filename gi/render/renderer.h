@@ -77,6 +77,8 @@ public:
             if (auto* t = dynamic_cast<const T*>(p.pass.get())) return t;
         return nullptr;
     }
+    // Each active pass's report (name, report) where it has one.
+    std::vector<std::pair<std::string, PassReport>> passReports(const FrameSettings& fs) const;
     // Every volume or buffer the active passes hold.
     std::vector<VolumeMemory> volumeMemory() const;
 
