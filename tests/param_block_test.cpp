@@ -1,12 +1,15 @@
-// Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h and
-// shaders/envmap/envmap_shared.h against the layout the driver gives the linked programs' blocks
+// Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h,
+// shaders/envmap/envmap_shared.h, shaders/lpv/lpv_shared.h and
+// shaders/volumetric/volumetric_shared.h against the layout the driver gives the linked programs' blocks
 // (size, each member's offset, array and matrix strides), a block laid out differently caught by
 // that comparison, and a block a program names, binds or sizes differently from the host refused
 // at construction and at reload with the shader and the block in the message.
 #include "gi/envmap/environment.h"
 #include "gi/gl/uniform_block.h"
+#include "gi/lpv/lpv.h"
 #include "gi/ssao/ssao.h"
 #include "gi/util/error.h"
+#include "gi/volumetric/volumetric.h"
 #include "test_util.h"
 
 #include <cstddef>
@@ -49,6 +52,28 @@ std::vector<Member> envMembers() {
             GI_MEMBER(T, pad1),        GI_MEMBER(T, pad2),       GI_MEMBER(T, mipRoughness), GI_MEMBER(T, size),
             GI_MEMBER(T, rowOffset),   GI_MEMBER(T, sourceSize), GI_MEMBER(T, mode),      GI_MEMBER(T, roughness),
             GI_MEMBER(T, diskRadius),  GI_MEMBER(T, samples),    GI_MEMBER(T, pad3),      GI_MEMBER(T, sh)};
+}
+
+std::vector<Member> lpvMembers() {
+    using T = LPVParams;
+    return {GI_MEMBER(T, invViewProj),   GI_MEMBER(T, lightViewProj),  GI_MEMBER(T, baseColor),    GI_MEMBER(T, gridMinCell),
+            GI_MEMBER(T, cameraPos),     GI_MEMBER(T, cascadeMinCell), GI_MEMBER(T, resolution),   GI_MEMBER(T, width),
+            GI_MEMBER(T, height),        GI_MEMBER(T, lightIndex),     GI_MEMBER(T, texelArea),    GI_MEMBER(T, texelSolidAngle),
+            GI_MEMBER(T, metallic),      GI_MEMBER(T, hasTexture),     GI_MEMBER(T, alphaCutoff),  GI_MEMBER(T, nudge),
+            GI_MEMBER(T, fromGBuffer),   GI_MEMBER(T, stride),         GI_MEMBER(T, pixelAngle),   GI_MEMBER(T, blocking),
+            GI_MEMBER(T, occlusionStrength), GI_MEMBER(T, cascadeCount), GI_MEMBER(T, intensity),  GI_MEMBER(T, damping),
+            GI_MEMBER(T, pad0),          GI_MEMBER(T, pad1)};
+}
+
+std::vector<Member> volumeMembers() {
+    using T = VolumeParams;
+    return {GI_MEMBER(T, invViewProj), GI_MEMBER(T, eye),         GI_MEMBER(T, boxMin),      GI_MEMBER(T, boxMax),
+            GI_MEMBER(T, sigmaS),      GI_MEMBER(T, sigmaT),      GI_MEMBER(T, fullWidth),   GI_MEMBER(T, fullHeight),
+            GI_MEMBER(T, lowWidth),    GI_MEMBER(T, lowHeight),   GI_MEMBER(T, toFullX),     GI_MEMBER(T, toFullY),
+            GI_MEMBER(T, samples),     GI_MEMBER(T, jitter),      GI_MEMBER(T, pcf),         GI_MEMBER(T, phase),
+            GI_MEMBER(T, g),           GI_MEMBER(T, k),           GI_MEMBER(T, intensity),   GI_MEMBER(T, shadowSize),
+            GI_MEMBER(T, lightFirst),  GI_MEMBER(T, lightCount),  GI_MEMBER(T, accumulate),  GI_MEMBER(T, depthAware),
+            GI_MEMBER(T, attenuateScene), GI_MEMBER(T, pad0),     GI_MEMBER(T, pad1),        GI_MEMBER(T, pad2)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per
@@ -124,6 +149,26 @@ TEST_F(ParamBlock, EnvironmentLayoutMatchesTheDriver) {
     }
 }
 
+TEST_F(ParamBlock, LPVLayoutMatchesTheDriver) {
+    std::vector<std::pair<std::string, std::vector<gl::StageSource>>> programs = {
+        {"rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}}};
+    for (const char* comp : {"inject", "geometry", "geometry_resolve", "transmit", "propagate", "resolve", "shade"})
+        programs.push_back({comp, {{GL_COMPUTE_SHADER, std::string("lpv/") + comp + ".comp"}}});
+    for (const auto& [name, stages] : programs) {
+        gl::Program p(name, stages);
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kLPVBlockName, "uLPV", sizeof(LPVParams), lpvMembers());
+        EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);
+    }
+}
+
+TEST_F(ParamBlock, VolumetricLayoutMatchesTheDriver) {
+    for (const char* comp : {"march", "blur", "composite"}) {
+        gl::Program p(comp, {{GL_COMPUTE_SHADER, std::string("volumetric/") + comp + ".comp"}});
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kVolumeBlockName, "uVolume", sizeof(VolumeParams), volumeMembers());
+        EXPECT_TRUE(diffs.empty()) << comp << ":\n" << joined(diffs);
+    }
+}
+
 // A copy of the shader tree to edit, made the shader root for the test's lifetime.
 class ParamBlockShaders : public test::GLTest {
 protected:
@@ -178,6 +223,17 @@ TEST_F(ParamBlockShaders, BlockAtAnotherBindingIsAnErrorNamingTheShader) {
     edit("envmap/envmap_shared.h", "binding = kEnvBlockBinding", "binding = 3");
     std::string msg = errorOf([] { Environment env; });
     EXPECT_NE(msg.find("shader environment.toCube: uniform block EnvBlock is at binding 3, the host binds it at 0"), std::string::npos)
+        << msg;
+}
+
+TEST_F(ParamBlockShaders, LPVAndVolumetricRefuseABlockAtAnotherBinding) {
+    edit("lpv/lpv_shared.h", "binding = kLPVBlockBinding", "binding = 3");
+    std::string msg = errorOf([] { LPV lpv; });
+    EXPECT_NE(msg.find("shader lpv.rsm: uniform block LPVBlock is at binding 3, the host binds it at 0"), std::string::npos) << msg;
+    edit("volumetric/volumetric_shared.h", "binding = kVolumeBlockBinding", "binding = 3");
+    msg = errorOf([] { Volumetric volumetric; });
+    EXPECT_NE(msg.find("shader volumetric.march: uniform block VolumeBlock is at binding 3, the host binds it at 0"),
+              std::string::npos)
         << msg;
 }
 

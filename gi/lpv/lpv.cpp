@@ -13,6 +13,8 @@
 
 namespace gi {
 
+using namespace shared;
+
 namespace {
 
 constexpr int kCoefficients = 12;  // 4 SH coefficients x RGB per cell
@@ -75,7 +77,11 @@ LPV::LPV()
       mTransmitProg("lpv.transmit", {{GL_COMPUTE_SHADER, "lpv/transmit.comp"}}),
       mPropagateProg("lpv.propagate", {{GL_COMPUTE_SHADER, "lpv/propagate.comp"}}),
       mResolveProg("lpv.resolve", {{GL_COMPUTE_SHADER, "lpv/resolve.comp"}}),
-      mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}) {
+      mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}),
+      mBlock(kLPVBlockName, kLPVBlockBinding) {
+    for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
+                           &mResolveProg, &mShadeProg})
+        mBlock.requireIn(*p);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
 }
 
@@ -214,16 +220,19 @@ void LPV::renderRSMs(const FrameContext& ctx) {
             for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
             const float one = 1.0f;
             glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
-            mRSMProg.set("uLightViewProj", m.viewProj);
-            mRSMProg.set("uLightIndex", int(li));
-            mRSMProg.set("uTexelArea", m.texelArea);
-            mRSMProg.set("uTexelSolidAngle", m.texelSolidAngle);
+            // The material changes per draw, so each draw uploads the block.
             ctx.scene.draw([&](const Material& mat, int) {
-                mRSMProg.set("uBaseColor", mat.baseColor);
-                mRSMProg.set("uMetallic", mat.metallic);
-                mRSMProg.set("uHasTexture", mat.baseColorTexture >= 0 ? 1 : 0);
-                mRSMProg.set("uAlphaCutoff", mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f);
-                if (mat.baseColorTexture >= 0) glBindTextureUnit(shared::kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
+                LPVParams p{};
+                p.lightViewProj = m.viewProj;
+                p.lightIndex = int(li);
+                p.texelArea = m.texelArea;
+                p.texelSolidAngle = m.texelSolidAngle;
+                p.baseColor = mat.baseColor;
+                p.metallic = mat.metallic;
+                p.hasTexture = mat.baseColorTexture >= 0 ? 1 : 0;
+                p.alphaCutoff = mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f;
+                mBlock.set(p);
+                if (mat.baseColorTexture >= 0) glBindTextureUnit(kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
             });
         }
     }
@@ -235,17 +244,18 @@ void LPV::inject(const FrameContext& ctx) {
     const LPVSettings& s = ctx.settings.lpv;
     for (auto& c : mCascadeData) clearBuffer(c.inject);
     mInjectProg.use();
-    mInjectProg.set("uResolution", mResolution);
-    mInjectProg.set("uRSMResolution", mRSMResolution);
     for (const RSM& m : mRSMs) {
         const CascadeBox& box = mBoxes[m.cascade];
-        mInjectProg.set("uGridMin", box.min);
-        mInjectProg.set("uCellSize", box.cellSize);
-        mInjectProg.set("uNudge", s.nudge);
-        glBindImageTexture(0, m.flux.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
-        glBindImageTexture(1, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
-        glBindImageTexture(2, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mCascadeData[m.cascade].inject.id());
+        LPVParams p{};
+        p.resolution = mResolution;
+        p.width = p.height = mRSMResolution;
+        p.gridMinCell = glm::vec4(box.min, box.cellSize);
+        p.nudge = s.nudge;
+        mBlock.set(p);
+        glBindImageTexture(kLPVImageFlux, m.flux.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferInject, mCascadeData[m.cascade].inject.id());
         glDispatchCompute(groups(mRSMResolution, 8), groups(mRSMResolution, 8), 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -266,43 +276,49 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         return;
     }
     mGeometryProg.use();
-    mGeometryProg.set("uResolution", mResolution);
     // Surfels from the RSMs.
-    mGeometryProg.set("uFromGBuffer", 0);
-    mGeometryProg.set("uSourceSize", glm::ivec2(mRSMResolution));
     for (const RSM& m : mRSMs) {
         const CascadeBox& box = mBoxes[m.cascade];
-        mGeometryProg.set("uGridMin", box.min);
-        mGeometryProg.set("uCellSize", box.cellSize);
-        glBindImageTexture(1, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
-        glBindImageTexture(2, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mCascadeData[m.cascade].geometryRSM.id());
+        LPVParams p{};
+        p.resolution = mResolution;
+        p.fromGBuffer = 0;
+        p.width = p.height = mRSMResolution;
+        p.gridMinCell = glm::vec4(box.min, box.cellSize);
+        mBlock.set(p);
+        glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[m.cascade].geometryRSM.id());
         glDispatchCompute(groups(mRSMResolution, 8), groups(mRSMResolution, 8), 1);
     }
     // Surfels from the camera's G-buffer, subsampled to about 128 x 128 samples.
     int stride = std::max(1, std::max(ctx.width, ctx.height) / 128);
-    mGeometryProg.set("uFromGBuffer", 1);
-    mGeometryProg.set("uStride", stride);
-    mGeometryProg.set("uSourceSize", glm::ivec2(ctx.width, ctx.height));
-    mGeometryProg.set("uInvViewProj", ctx.invViewProj);
-    mGeometryProg.set("uCameraPos", ctx.settings.camera.eye);
-    mGeometryProg.set("uPixelAngle", 2.0f * std::tan(glm::radians(ctx.settings.camera.fovY) * 0.5f) / float(ctx.height));
-    glBindTextureUnit(shared::kUnitNormal, ctx.normal);
-    glBindTextureUnit(shared::kUnitDepth, ctx.depth);
+    glBindTextureUnit(kUnitNormal, ctx.normal);
+    glBindTextureUnit(kUnitDepth, ctx.depth);
     for (size_t k = 0; k < mCascadeData.size(); ++k) {
-        mGeometryProg.set("uGridMin", mBoxes[k].min);
-        mGeometryProg.set("uCellSize", mBoxes[k].cellSize);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mCascadeData[k].geometryGBuffer.id());
+        LPVParams p{};
+        p.resolution = mResolution;
+        p.fromGBuffer = 1;
+        p.stride = stride;
+        p.width = ctx.width;
+        p.height = ctx.height;
+        p.invViewProj = ctx.invViewProj;
+        p.cameraPos = glm::vec4(ctx.settings.camera.eye, 1.0f);
+        p.pixelAngle = 2.0f * std::tan(glm::radians(ctx.settings.camera.fovY) * 0.5f) / float(ctx.height);
+        p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
+        mBlock.set(p);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryGBuffer.id());
         glDispatchCompute(groups(groups(ctx.width, stride), 8), groups(groups(ctx.height, stride), 8), 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     mGeometryResolveProg.use();
-    mGeometryResolveProg.set("uResolution", mResolution);
+    LPVParams resolve{};
+    resolve.resolution = mResolution;
+    mBlock.set(resolve);
     for (auto& c : mCascadeData) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.geometryRSM.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.geometryGBuffer.id());
-        glBindImageTexture(0, c.geometryRSMVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindImageTexture(1, c.geometryGBufferVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryRSM, c.geometryRSM.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryGBuffer, c.geometryGBuffer.id());
+        glBindImageTexture(kLPVImageGeometryRSM, c.geometryRSMVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(kLPVImageGeometryGBuffer, c.geometryGBufferVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         GLuint g = groups(mResolution + 1, 4);
         glDispatchCompute(g, g, g);
     }
@@ -311,12 +327,14 @@ void LPV::buildGeometry(const FrameContext& ctx) {
 
 void LPV::propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, int resolution, bool blocking) {
     mPropagateProg.use();
-    mPropagateProg.set("uResolution", resolution);
-    mPropagateProg.set("uBlocking", blocking ? 1 : 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, src);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, dst);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, accum);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, transmit);
+    LPVParams p{};
+    p.resolution = resolution;
+    p.blocking = blocking ? 1 : 0;
+    mBlock.set(p);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferSource, src);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferDestination, dst);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferAccum, accum);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, transmit);
     GLuint g = groups(resolution, 4);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -328,19 +346,21 @@ void LPV::propagate(const FrameContext& ctx) {
     size_t bytes = cells(mResolution) * kCoefficients * 4;
     if (s.occlusion) {
         mTransmitProg.use();
-        mTransmitProg.set("uResolution", mResolution);
-        mTransmitProg.set("uOcclusionStrength", s.occlusionStrength);
-        glBindSampler(0, mLinear.id());
-        glBindSampler(1, mLinear.id());
+        LPVParams p{};
+        p.resolution = mResolution;
+        p.occlusionStrength = s.occlusionStrength;
+        mBlock.set(p);
+        glBindSampler(kLPVUnitGeometryRSM, mLinear.id());
+        glBindSampler(kLPVUnitGeometryGBuffer, mLinear.id());
         for (auto& c : mCascadeData) {
-            glBindTextureUnit(0, c.geometryRSMVolume.id());
-            glBindTextureUnit(1, c.geometryGBufferVolume.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.transmit.id());
+            glBindTextureUnit(kLPVUnitGeometryRSM, c.geometryRSMVolume.id());
+            glBindTextureUnit(kLPVUnitGeometryGBuffer, c.geometryGBufferVolume.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, c.transmit.id());
             GLuint g = groups(mResolution, 4);
             glDispatchCompute(g, g, g);
         }
-        glBindSampler(0, 0);
-        glBindSampler(1, 0);
+        glBindSampler(kLPVUnitGeometryRSM, 0);
+        glBindSampler(kLPVUnitGeometryGBuffer, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     for (auto& c : mCascadeData) {
@@ -353,12 +373,14 @@ void LPV::propagate(const FrameContext& ctx) {
         }
     }
     mResolveProg.use();
-    mResolveProg.set("uResolution", mResolution);
+    LPVParams p{};
+    p.resolution = mResolution;
+    mBlock.set(p);
     for (auto& c : mCascadeData) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.accum.id());
-        glBindImageTexture(0, c.shR.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindImageTexture(1, c.shG.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindImageTexture(2, c.shB.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferAccum, c.accum.id());
+        glBindImageTexture(kLPVImageSHR, c.shR.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(kLPVImageSHG, c.shG.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(kLPVImageSHB, c.shB.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         GLuint g = groups(mResolution, 4);
         glDispatchCompute(g, g, g);
     }
@@ -368,30 +390,33 @@ void LPV::propagate(const FrameContext& ctx) {
 void LPV::shade(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("lpv.shade");
     const LPVSettings& s = ctx.settings.lpv;
+    GI_ASSERT(mBoxes.size() <= size_t(kLPVMaxCascades), "LPVParams holds kLPVMaxCascades cascades");
     mShadeProg.use();
-    mShadeProg.set("uInvViewProj", ctx.invViewProj);
-    mShadeProg.set("uCascadeCount", int(mBoxes.size()));
-    mShadeProg.set("uIntensity", s.intensity);
-    mShadeProg.set("uDamping", s.damping);
-    mShadeProg.set("uSize", glm::ivec2(ctx.width, ctx.height));
+    LPVParams p{};
+    p.invViewProj = ctx.invViewProj;
+    p.cascadeCount = int(mBoxes.size());
+    p.intensity = s.intensity;
+    p.damping = s.damping;
+    p.width = ctx.width;
+    p.height = ctx.height;
+    p.resolution = mResolution;
     for (size_t k = 0; k < mBoxes.size(); ++k) {
-        std::string i = "[" + std::to_string(k) + "]";
-        glProgramUniform4f(mShadeProg.id(), mShadeProg.location(("uCascadeMinCell" + i).c_str()), mBoxes[k].min.x,
-                           mBoxes[k].min.y, mBoxes[k].min.z, mBoxes[k].cellSize);
+        p.cascadeMinCell[k] = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
         const Cascade& c = mCascadeData[k];
-        for (int ch = 0; ch < 3; ++ch) {
-            GLuint unit = GLuint(8 + k * 3 + ch);
-            glBindTextureUnit(unit, ch == 0 ? c.shR.id() : ch == 1 ? c.shG.id() : c.shB.id());
+        const GLuint volumes[kLPVSHChannels] = {c.shR.id(), c.shG.id(), c.shB.id()};
+        for (int ch = 0; ch < kLPVSHChannels; ++ch) {
+            GLuint unit = GLuint(kLPVUnitSH + kLPVSHChannels * int(k) + ch);
+            glBindTextureUnit(unit, volumes[ch]);
             glBindSampler(unit, mLinear.id());
         }
     }
-    mShadeProg.set("uResolution", mResolution);
-    glBindTextureUnit(shared::kUnitNormal, ctx.normal);
-    glBindTextureUnit(shared::kUnitDepth, ctx.depth);
-    glBindImageTexture(0, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    mBlock.set(p);
+    glBindTextureUnit(kUnitNormal, ctx.normal);
+    glBindTextureUnit(kUnitDepth, ctx.depth);
+    glBindImageTexture(kLPVImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups(ctx.width, 8), groups(ctx.height, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    for (GLuint unit = 8; unit < 20; ++unit) glBindSampler(unit, 0);
+    for (int unit = kLPVUnitSH; unit < kLPVUnitSH + kLPVSHChannels * kLPVMaxCascades; ++unit) glBindSampler(GLuint(unit), 0);
 }
 
 std::vector<DebugView> LPV::debugViews() const {
@@ -399,19 +424,19 @@ std::vector<DebugView> LPV::debugViews() const {
     for (const RSM& m : mRSMs) {
         std::string suffix = std::to_string(m.light) + "c" + std::to_string(m.cascade);
         int n = mRSMResolution;
-        v.push_back({"lpv.rsmFlux" + suffix, m.flux.id(), GL_TEXTURE_2D, shared::kViewColor, n, n, 0, 1, 1});
-        v.push_back({"lpv.rsmNormal" + suffix, m.normal.id(), GL_TEXTURE_2D, shared::kViewNormal, n, n, 0, 1, 1});
-        v.push_back({"lpv.rsmPosition" + suffix, m.position.id(), GL_TEXTURE_2D, shared::kViewPosition, n, n, 0, 1, 1});
+        v.push_back({"lpv.rsmFlux" + suffix, m.flux.id(), GL_TEXTURE_2D, kViewColor, n, n, 0, 1, 1});
+        v.push_back({"lpv.rsmNormal" + suffix, m.normal.id(), GL_TEXTURE_2D, kViewNormal, n, n, 0, 1, 1});
+        v.push_back({"lpv.rsmPosition" + suffix, m.position.id(), GL_TEXTURE_2D, kViewPosition, n, n, 0, 1, 1});
     }
     for (size_t k = 0; k < mCascadeData.size(); ++k) {
         const Cascade& c = mCascadeData[k];
-        DebugView sh{"lpv.volume" + std::to_string(k), c.shR.id(), GL_TEXTURE_3D, shared::kViewSHVolume, 512, 512, 0, 1, 1};
+        DebugView sh{"lpv.volume" + std::to_string(k), c.shR.id(), GL_TEXTURE_3D, kViewSHVolume, 512, 512, 0, 1, 1};
         sh.extra[0] = c.shG.id();
         sh.extra[1] = c.shB.id();
         sh.scale = 1.0f / (mBoxes.empty() ? 1.0f : mBoxes[k].cellSize * mBoxes[k].cellSize);
         v.push_back(sh);
-        v.push_back({"lpv.geometryRSM" + std::to_string(k), c.geometryRSMVolume.id(), GL_TEXTURE_3D, shared::kViewVolume, 512, 512, 0, 1, 1});
-        v.push_back({"lpv.geometryGBuffer" + std::to_string(k), c.geometryGBufferVolume.id(), GL_TEXTURE_3D, shared::kViewVolume, 512,
+        v.push_back({"lpv.geometryRSM" + std::to_string(k), c.geometryRSMVolume.id(), GL_TEXTURE_3D, kViewVolume, 512, 512, 0, 1, 1});
+        v.push_back({"lpv.geometryGBuffer" + std::to_string(k), c.geometryGBufferVolume.id(), GL_TEXTURE_3D, kViewVolume, 512,
                      512, 0, 1, 1});
     }
     return v;

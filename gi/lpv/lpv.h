@@ -45,7 +45,9 @@
 
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
+#include "gi/gl/uniform_block.h"
 #include "gi/render/pass.h"
+#include "lpv/lpv_shared.h"
 
 #include <glm/glm.hpp>
 
@@ -104,6 +106,7 @@ private:
 
     gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mResolveProg,
         mShadeProg;
+    gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;
     std::vector<RSM> mRSMs;

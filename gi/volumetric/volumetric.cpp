@@ -12,11 +12,9 @@
 
 namespace gi {
 
-namespace {
+using namespace shared;
 
-constexpr int kMaxLights = 4;          // march.comp's kVolumeMaxLights
-constexpr GLuint kUnitShadow2D = 9;    // march.comp's bindings
-constexpr GLuint kUnitShadowCube = 13;
+namespace {
 
 gl::Sampler makeSampler(GLenum filter, bool compare) { return gl::createSampler({filter, filter, GL_CLAMP_TO_EDGE, 0, 0, compare}); }
 
@@ -27,11 +25,12 @@ glm::ivec2 marchSize(const FrameSettings& fs) {
 
 GLuint groups(int n) { return GLuint((n + 7) / 8); }
 
-void setMedium(const gl::Program& p, const Medium& m) {
-    p.set("uBoxMin", m.box.min);
-    p.set("uBoxMax", m.box.max);
-    p.set("uSigmaS", m.sigmaS);
-    p.set("uSigmaT", m.sigmaT);
+// The fields of medium.glsl, which the march and the composite read.
+void setMedium(VolumeParams& p, const Medium& m) {
+    p.boxMin = glm::vec4(m.box.min, 1.0f);
+    p.boxMax = glm::vec4(m.box.max, 1.0f);
+    p.sigmaS = m.sigmaS;
+    p.sigmaT = m.sigmaT;
 }
 
 }  // namespace
@@ -39,7 +38,9 @@ void setMedium(const gl::Program& p, const Medium& m) {
 Volumetric::Volumetric()
     : mMarchProg("volumetric.march", {{GL_COMPUTE_SHADER, "volumetric/march.comp"}}),
       mBlurProg("volumetric.blur", {{GL_COMPUTE_SHADER, "volumetric/blur.comp"}}),
-      mCompositeProg("volumetric.composite", {{GL_COMPUTE_SHADER, "volumetric/composite.comp"}}) {
+      mCompositeProg("volumetric.composite", {{GL_COMPUTE_SHADER, "volumetric/composite.comp"}}),
+      mBlock(kVolumeBlockName, kVolumeBlockBinding) {
+    for (gl::Program* p : {&mMarchProg, &mBlurProg, &mCompositeProg}) mBlock.requireIn(*p);
     mLinear = makeSampler(GL_LINEAR, false);
     mPoint = makeSampler(GL_NEAREST, false);
     mShadowSampler = makeSampler(GL_LINEAR, true);
@@ -72,56 +73,65 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
     {
         auto pass = timer.scope("volumetric.march");
         mMarchProg.use();
-        setMedium(mMarchProg, medium);
-        mMarchProg.set("uInvViewProj", in.invViewProj);
-        mMarchProg.set("uEye", fs.camera.eye);
-        mMarchProg.set("uSize", glm::ivec2(mWidth, mHeight));
-        mMarchProg.set("uFullSize", glm::ivec2(in.width, in.height));
-        mMarchProg.set("uToFull", glm::vec2(float(in.width) / float(mWidth), float(in.height) / float(mHeight)));
-        mMarchProg.set("uSamples", s.samples);
-        mMarchProg.set("uJitter", s.jitter ? 1 : 0);
-        mMarchProg.set("uPCF", s.pcf ? 1 : 0);
-        mMarchProg.set("uPhase", int(medium.phase.function));
-        mMarchProg.set("uG", medium.phase.g);
-        mMarchProg.set("uK", medium.phase.k);
-        mMarchProg.set("uIntensity", medium.intensity);
-        mMarchProg.set("uShadowSize", in.shadowSize);
-        glBindTextureUnit(shared::kUnitDepth, in.depth);
-        glBindSampler(shared::kUnitDepth, mPoint.id());
-        glBindImageTexture(0, mMarch.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-        for (int u = 0; u < kMaxLights; ++u) {
-            glBindSampler(kUnitShadow2D + GLuint(u), mShadowSampler.id());
-            glBindSampler(kUnitShadowCube + GLuint(u), mShadowSampler.id());
+        glBindTextureUnit(kUnitDepth, in.depth);
+        glBindSampler(kUnitDepth, mPoint.id());
+        glBindImageTexture(kVolumeImageTarget, mMarch.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+        for (int u = 0; u < kVolumeMaxLights; ++u) {
+            glBindSampler(GLuint(kVolumeUnitShadow2D + u), mShadowSampler.id());
+            glBindSampler(GLuint(kVolumeUnitShadowCube + u), mShadowSampler.id());
         }
         size_t lightCount = fs.lights.size();
-        for (size_t first = 0; first == 0 || first < lightCount; first += kMaxLights) {
-            int n = int(std::min<size_t>(kMaxLights, lightCount - std::min(first, lightCount)));
-            mMarchProg.set("uLightFirst", int(first));
-            mMarchProg.set("uLightCount", n);
-            mMarchProg.set("uAccumulate", first > 0 ? 1 : 0);
-            for (int i = 0; i < kMaxLights; ++i) {
+        for (size_t first = 0; first == 0 || first < lightCount; first += kVolumeMaxLights) {
+            int n = int(std::min<size_t>(kVolumeMaxLights, lightCount - std::min(first, lightCount)));
+            VolumeParams p{};
+            setMedium(p, medium);
+            p.invViewProj = in.invViewProj;
+            p.eye = glm::vec4(fs.camera.eye, 1.0f);
+            p.lowWidth = mWidth;
+            p.lowHeight = mHeight;
+            p.fullWidth = in.width;
+            p.fullHeight = in.height;
+            p.toFullX = float(in.width) / float(mWidth);
+            p.toFullY = float(in.height) / float(mHeight);
+            p.samples = s.samples;
+            p.jitter = s.jitter ? 1 : 0;
+            p.pcf = s.pcf ? 1 : 0;
+            p.phase = int(medium.phase.function);
+            p.g = medium.phase.g;
+            p.k = medium.phase.k;
+            p.intensity = medium.intensity;
+            p.shadowSize = in.shadowSize;
+            p.lightFirst = int(first);
+            p.lightCount = n;
+            p.accumulate = first > 0 ? 1 : 0;
+            mBlock.set(p);
+            for (int i = 0; i < kVolumeMaxLights; ++i) {
                 // Units of the unused type still need a texture of the sampler's type: 0 is fine.
-                glBindTextureUnit(kUnitShadow2D + GLuint(i), 0);
-                glBindTextureUnit(kUnitShadowCube + GLuint(i), 0);
+                glBindTextureUnit(GLuint(kVolumeUnitShadow2D + i), 0);
+                glBindTextureUnit(GLuint(kVolumeUnitShadowCube + i), 0);
             }
-            for (int i = 0; i < n; ++i) bindBatchShadowMap(i, in.shadows[first + size_t(i)], kUnitShadow2D, kUnitShadowCube);
+            for (int i = 0; i < n; ++i)
+                bindBatchShadowMap(i, in.shadows[first + size_t(i)], kVolumeUnitShadow2D, kVolumeUnitShadowCube);
             glDispatchCompute(groups(mWidth), groups(mHeight), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }
-        for (int u = 0; u < kMaxLights; ++u) {
-            glBindSampler(kUnitShadow2D + GLuint(u), 0);
-            glBindSampler(kUnitShadowCube + GLuint(u), 0);
+        for (int u = 0; u < kVolumeMaxLights; ++u) {
+            glBindSampler(GLuint(kVolumeUnitShadow2D + u), 0);
+            glBindSampler(GLuint(kVolumeUnitShadowCube + u), 0);
         }
     }
     GLuint source = mMarch.id();
     if (s.blur != VolumeBlur::None) {
         auto pass = timer.scope("volumetric.blur");
         mBlurProg.use();
-        mBlurProg.set("uSize", glm::ivec2(mWidth, mHeight));
-        mBlurProg.set("uDepthAware", s.blur == VolumeBlur::DepthAware ? 1 : 0);
-        glBindTextureUnit(0, mMarch.id());
-        glBindSampler(0, mPoint.id());
-        glBindImageTexture(0, mBlurred.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        VolumeParams p{};
+        p.lowWidth = mWidth;
+        p.lowHeight = mHeight;
+        p.depthAware = s.blur == VolumeBlur::DepthAware ? 1 : 0;
+        mBlock.set(p);
+        glBindTextureUnit(kVolumeUnitSource, mMarch.id());
+        glBindSampler(kVolumeUnitSource, mPoint.id());
+        glBindImageTexture(kVolumeImageTarget, mBlurred.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glDispatchCompute(groups(mWidth), groups(mHeight), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         source = mBlurred.id();
@@ -132,22 +142,26 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
     {
         auto pass = timer.scope("volumetric.composite");
         mCompositeProg.use();
-        setMedium(mCompositeProg, medium);
-        mCompositeProg.set("uInvViewProj", in.invViewProj);
-        mCompositeProg.set("uEye", fs.camera.eye);
-        mCompositeProg.set("uFullSize", glm::ivec2(in.width, in.height));
-        mCompositeProg.set("uLowSize", glm::ivec2(mWidth, mHeight));
-        mCompositeProg.set("uDepthAware", s.blur == VolumeBlur::DepthAware ? 1 : 0);
-        mCompositeProg.set("uAttenuateScene", medium.attenuateScene ? 1 : 0);
-        glBindTextureUnit(shared::kUnitDepth, in.depth);
-        glBindSampler(shared::kUnitDepth, mPoint.id());
-        glBindTextureUnit(0, source);
-        glBindSampler(0, mLinear.id());
-        glBindImageTexture(0, in.hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+        VolumeParams p{};
+        setMedium(p, medium);
+        p.invViewProj = in.invViewProj;
+        p.eye = glm::vec4(fs.camera.eye, 1.0f);
+        p.fullWidth = in.width;
+        p.fullHeight = in.height;
+        p.lowWidth = mWidth;
+        p.lowHeight = mHeight;
+        p.depthAware = s.blur == VolumeBlur::DepthAware ? 1 : 0;
+        p.attenuateScene = medium.attenuateScene ? 1 : 0;
+        mBlock.set(p);
+        glBindTextureUnit(kUnitDepth, in.depth);
+        glBindSampler(kUnitDepth, mPoint.id());
+        glBindTextureUnit(kVolumeUnitSource, source);
+        glBindSampler(kVolumeUnitSource, mLinear.id());
+        glBindImageTexture(kVolumeImageTarget, in.hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         glDispatchCompute(groups(in.width), groups(in.height), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-        glBindSampler(0, 0);
-        glBindSampler(shared::kUnitDepth, 0);
+        glBindSampler(kVolumeUnitSource, 0);
+        glBindSampler(kUnitDepth, 0);
     }
 }
 
@@ -181,8 +195,8 @@ size_t VolumetricSettings::estimateBytes(const FrameSettings& fs) { return Volum
 std::vector<DebugView> Volumetric::debugViews() const {
     std::vector<DebugView> v;
     if (!mActive) return v;
-    v.push_back({"volumetricRaw", mMarch.id(), GL_TEXTURE_2D, shared::kViewColor, mWidth, mHeight});
-    v.push_back({"volumetric", mBlurred.id(), GL_TEXTURE_2D, shared::kViewColor, mWidth, mHeight});
+    v.push_back({"volumetricRaw", mMarch.id(), GL_TEXTURE_2D, kViewColor, mWidth, mHeight});
+    v.push_back({"volumetric", mBlurred.id(), GL_TEXTURE_2D, kViewColor, mWidth, mHeight});
     return v;
 }
 

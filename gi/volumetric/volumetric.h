@@ -32,9 +32,11 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/gl/uniform_block.h"
 #include "gi/render/pass.h"
 #include "gi/scene/scene.h"
 #include "gi/volumetric/medium.h"
+#include "volumetric/volumetric_shared.h"
 
 #include <glm/glm.hpp>
 
@@ -76,6 +78,7 @@ public:
 
 private:
     gl::Program mMarchProg, mBlurProg, mCompositeProg;
+    gl::UniformBlock<shared::VolumeParams> mBlock;  // every pass reads it
     gl::Sampler mLinear, mPoint, mShadowSampler;
     gl::Texture mMarch, mBlurred;
     int mWidth = 0, mHeight = 0;  // march buffer

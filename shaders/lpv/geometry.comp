@@ -4,20 +4,11 @@
 #include "lpv/common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 1, rgba16f) uniform readonly image2D uRSMNormal;
-layout(binding = 2, rgba32f) uniform readonly image2D uRSMPosition;
+layout(binding = kLPVImageNormal, rgba16f) uniform readonly image2D uRSMNormal;
+layout(binding = kLPVImagePosition, rgba32f) uniform readonly image2D uRSMPosition;
 layout(binding = kUnitNormal) uniform sampler2D uGNormal;
 layout(binding = kUnitDepth) uniform sampler2D uGDepth;
-layout(std430, binding = 0) buffer Geometry { uint geometry[]; };
-
-uniform bool uFromGBuffer;
-uniform ivec2 uSourceSize;
-uniform int uStride;          // G-buffer: one sample every uStride pixels
-uniform mat4 uInvViewProj;
-uniform vec3 uCameraPos;
-uniform float uPixelAngle;    // G-buffer: world size of a pixel at distance 1
-uniform vec3 uGridMin;
-uniform float uCellSize;
+layout(std430, binding = kLPVBufferGeometry) buffer Geometry { uint geometry[]; };
 
 void atomicAddFloat(int i, float v) {
     uint seen = geometry[i];
@@ -31,31 +22,34 @@ void atomicAddFloat(int i, float v) {
 void main() {
     vec3 p, n;
     float area;
-    if (uFromGBuffer) {
-        ivec2 px = ivec2(gl_GlobalInvocationID.xy) * uStride;
-        if (any(greaterThanEqual(px, uSourceSize))) return;
+    ivec2 sourceSize = ivec2(uLPV.width, uLPV.height);
+    float cellSize = uLPV.gridMinCell.w;
+    if (uLPV.fromGBuffer != 0) {
+        ivec2 px = ivec2(gl_GlobalInvocationID.xy) * uLPV.stride;
+        if (any(greaterThanEqual(px, sourceSize))) return;
         float depth = texelFetch(uGDepth, px, 0).r;
         if (depth >= 1.0) return;
-        vec2 uv = (vec2(px) + 0.5) / vec2(uSourceSize);
-        vec4 w = uInvViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        vec2 uv = (vec2(px) + 0.5) / vec2(sourceSize);
+        vec4 w = uLPV.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         p = w.xyz / w.w;
         n = normalize(texelFetch(uGNormal, px, 0).xyz);
-        float d = length(p - uCameraPos);
-        float side = d * uPixelAngle * float(uStride);
-        area = side * side / max(abs(dot(n, (p - uCameraPos) / d)), 0.2);
+        vec3 camera = uLPV.cameraPos.xyz;
+        float d = length(p - camera);
+        float side = d * uLPV.pixelAngle * float(uLPV.stride);
+        area = side * side / max(abs(dot(n, (p - camera) / d)), 0.2);
     } else {
         ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-        if (any(greaterThanEqual(t, uSourceSize))) return;
+        if (any(greaterThanEqual(t, sourceSize))) return;
         vec4 pos = imageLoad(uRSMPosition, t);
         if (pos.w <= 0.0) return;
         p = pos.xyz;
         n = normalize(imageLoad(uRSMNormal, t).xyz);
         area = pos.w;
     }
-    ivec3 c = ivec3(floor((p - uGridMin) / uCellSize + 0.5));
-    if (any(lessThan(c, ivec3(0))) || any(greaterThan(c, ivec3(uResolution)))) return;
-    int r1 = uResolution + 1;
+    ivec3 c = ivec3(floor((p - uLPV.gridMinCell.xyz) / cellSize + 0.5));
+    if (any(lessThan(c, ivec3(0))) || any(greaterThan(c, ivec3(uLPV.resolution)))) return;
+    int r1 = uLPV.resolution + 1;
     int base = ((c.z * r1 + c.y) * r1 + c.x) * 4;
-    vec4 b = shCosLobe(n) * min(area / (uCellSize * uCellSize), 1.0);
+    vec4 b = shCosLobe(n) * min(area / (cellSize * cellSize), 1.0);
     for (int k = 0; k < 4; ++k) atomicAddFloat(base + k, b[k]);
 }

@@ -5,14 +5,14 @@
 #include "lpv/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(std430, binding = 0) readonly buffer FromRSM { float fromRSM[]; };
-layout(std430, binding = 1) readonly buffer FromGBuffer { float fromGBuffer[]; };
-layout(binding = 0, rgba16f) uniform writeonly image3D uGeometryRSM;
-layout(binding = 1, rgba16f) uniform writeonly image3D uGeometryGBuffer;
+layout(std430, binding = kLPVBufferGeometryRSM) readonly buffer FromRSM { float fromRSM[]; };
+layout(std430, binding = kLPVBufferGeometryGBuffer) readonly buffer FromGBuffer { float fromGBuffer[]; };
+layout(binding = kLPVImageGeometryRSM, rgba16f) uniform writeonly image3D uGeometryRSM;
+layout(binding = kLPVImageGeometryGBuffer, rgba16f) uniform writeonly image3D uGeometryGBuffer;
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
-    int r1 = uResolution + 1;
+    int r1 = uLPV.resolution + 1;
     if (any(greaterThanEqual(c, ivec3(r1)))) return;
     int base = ((c.z * r1 + c.y) * r1 + c.x) * 4;
     imageStore(uGeometryRSM, c, vec4(fromRSM[base], fromRSM[base + 1], fromRSM[base + 2], fromRSM[base + 3]));

@@ -4,15 +4,10 @@
 #include "lpv/common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba16f) uniform readonly image2D uFlux;
-layout(binding = 1, rgba16f) uniform readonly image2D uNormal;
-layout(binding = 2, rgba32f) uniform readonly image2D uPosition;
-layout(std430, binding = 0) buffer Grid { uint grid[]; };
-
-uniform int uRSMResolution;
-uniform vec3 uGridMin;
-uniform float uCellSize;
-uniform float uNudge;
+layout(binding = kLPVImageFlux, rgba16f) uniform readonly image2D uFlux;
+layout(binding = kLPVImageNormal, rgba16f) uniform readonly image2D uNormal;
+layout(binding = kLPVImagePosition, rgba32f) uniform readonly image2D uPosition;
+layout(std430, binding = kLPVBufferInject) buffer Grid { uint grid[]; };
 
 void atomicAddFloat(int i, float v) {
     uint seen = grid[i];
@@ -25,13 +20,14 @@ void atomicAddFloat(int i, float v) {
 
 void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(t, ivec2(uRSMResolution)))) return;
+    if (any(greaterThanEqual(t, ivec2(uLPV.width, uLPV.height)))) return;
     vec4 pos = imageLoad(uPosition, t);
     vec3 flux = imageLoad(uFlux, t).rgb;
     if (pos.w <= 0.0 || max(flux.r, max(flux.g, flux.b)) <= 0.0) return;
     vec3 n = normalize(imageLoad(uNormal, t).xyz);
-    vec3 p = pos.xyz + n * uNudge * uCellSize;
-    ivec3 c = ivec3(floor((p - uGridMin) / uCellSize));
+    float cellSize = uLPV.gridMinCell.w;
+    vec3 p = pos.xyz + n * uLPV.nudge * cellSize;
+    ivec3 c = ivec3(floor((p - uLPV.gridMinCell.xyz) / cellSize));
     if (!insideGrid(c)) return;
     vec4 lobe = shCosLobe(n) / kPi;
     int base = cellIndex(c) * 12;

@@ -10,12 +10,11 @@
 #include "lpv/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(std430, binding = 0) readonly buffer Source { vec4 src[]; };  // 3 vec4 (R, G, B) per cell
-layout(std430, binding = 1) writeonly buffer Destination { vec4 dst[]; };
-layout(std430, binding = 2) buffer Accumulated { vec4 accum[]; };
-layout(std430, binding = 3) readonly buffer Transmit { vec4 transmit[]; };  // from transmit.comp
+layout(std430, binding = kLPVBufferSource) readonly buffer Source { vec4 src[]; };  // 3 vec4 (R, G, B) per cell
+layout(std430, binding = kLPVBufferDestination) writeonly buffer Destination { vec4 dst[]; };
+layout(std430, binding = kLPVBufferAccum) buffer Accumulated { vec4 accum[]; };
+layout(std430, binding = kLPVBufferTransmit) readonly buffer Transmit { vec4 transmit[]; };  // from transmit.comp
 
-uniform bool uBlocking;
 const float kMainFace = 0.12753712;  // 0.4006696846 / pi
 const float kSideFace = 0.13478556;  // 0.4234413544 / pi
 
@@ -27,7 +26,7 @@ void main() {
     if (!insideGrid(cell)) return;
     vec4 outR = vec4(0.0), outG = vec4(0.0), outB = vec4(0.0);
     vec4 t0 = vec4(1.0), t1 = vec4(1.0);
-    if (uBlocking) {
+    if (uLPV.blocking != 0) {
         t0 = transmit[cellIndex(cell) * 2];
         t1 = transmit[cellIndex(cell) * 2 + 1];
     }

@@ -2,10 +2,10 @@
 #include "lpv/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(std430, binding = 0) readonly buffer Accumulated { float accum[]; };
-layout(binding = 0, rgba16f) uniform writeonly image3D uR;
-layout(binding = 1, rgba16f) uniform writeonly image3D uG;
-layout(binding = 2, rgba16f) uniform writeonly image3D uB;
+layout(std430, binding = kLPVBufferAccum) readonly buffer Accumulated { float accum[]; };
+layout(binding = kLPVImageSHR, rgba16f) uniform writeonly image3D uR;
+layout(binding = kLPVImageSHG, rgba16f) uniform writeonly image3D uG;
+layout(binding = kLPVImageSHB, rgba16f) uniform writeonly image3D uB;
 
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);

@@ -1,18 +1,12 @@
 // Reflective shadow map texel: world position (w: the surfel's world area), normal facing the
 // light, and the flux the surfel reflects diffusely: albedo * light * projected texel area
 // (directional) or albedo * intensity * texel solid angle (spot), so the total does not depend
-// on the map's resolution. The light is entry uLightIndex of the frame's light buffer.
+// on the map's resolution. The light is entry lightIndex of the frame's light buffer.
 #include "common/light.h"
 #include "common/material.glsl"
+#include "lpv/lpv_shared.h"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
-uniform vec4 uBaseColor;
-uniform float uMetallic;
-uniform bool uHasTexture;
-uniform float uAlphaCutoff;
-uniform int uLightIndex;
-uniform float uTexelArea;        // directional
-uniform float uTexelSolidAngle;  // spot, at the map's centre
 
 in vec3 vWorld;
 in vec3 vNormal;
@@ -23,31 +17,31 @@ layout(location = 1) out vec4 oNormal;
 layout(location = 2) out vec4 oPosition;
 
 void main() {
-    vec4 base = uBaseColor;
-    if (uHasTexture) base *= sampleMaterial(uBaseColorTex, vUV);
-    if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
-    GPULight l = uLights[uLightIndex];
+    vec4 base = uLPV.baseColor;
+    if (uLPV.hasTexture != 0) base *= sampleMaterial(uBaseColorTex, vUV);
+    if (uLPV.alphaCutoff >= 0.0 && base.a < uLPV.alphaCutoff) discard;
+    GPULight l = uLights[uLPV.lightIndex];
     vec3 L;  // towards the light
     vec3 flux;
     float area;
     if (l.info.x == kLightDirectional) {
         L = -l.direction.xyz;
-        flux = l.color.rgb * uTexelArea;
-        area = uTexelArea;
+        flux = l.color.rgb * uLPV.texelArea;
+        area = uLPV.texelArea;
     } else {
         vec3 toLight = l.position.xyz - vWorld;
         float d = length(toLight);
         L = toLight / d;
         // A texel's solid angle shrinks with cos^3 of its angle off the axis.
         float cosAxis = dot(-L, l.direction.xyz);
-        float solidAngle = uTexelSolidAngle * cosAxis * cosAxis * cosAxis;
+        float solidAngle = uLPV.texelSolidAngle * cosAxis * cosAxis * cosAxis;
         flux = l.color.rgb * lightProfile(l, d, cosAxis) * solidAngle;
         area = solidAngle * d * d;
     }
     vec3 n = normalize(vNormal);
     if (dot(n, L) < 0.0) n = -n;  // two-sided, as the raster and the path tracer
     float cosTheta = max(dot(n, L), 0.05);
-    oFlux = vec4(base.rgb * (1.0 - uMetallic) * flux, 1.0);
+    oFlux = vec4(base.rgb * (1.0 - uLPV.metallic) * flux, 1.0);
     oNormal = vec4(n, 1.0);
     oPosition = vec4(vWorld, area / cosTheta);
 }

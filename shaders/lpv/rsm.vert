@@ -1,9 +1,9 @@
 // Reflective shadow map: the world-space scene seen from the light.
+#include "lpv/lpv_shared.h"
+
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUV;
-
-uniform mat4 uLightViewProj;
 
 out vec3 vWorld;
 out vec3 vNormal;
@@ -13,5 +13,5 @@ void main() {
     vWorld = aPosition;
     vNormal = aNormal;
     vUV = aUV;
-    gl_Position = uLightViewProj * vec4(aPosition, 1.0);
+    gl_Position = uLPV.lightViewProj * vec4(aPosition, 1.0);
 }

@@ -4,11 +4,9 @@
 #include "lpv/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0) uniform sampler3D uGeometryRSM;
-layout(binding = 1) uniform sampler3D uGeometryGBuffer;
-layout(std430, binding = 0) writeonly buffer Transmit { vec4 transmit[]; };  // 2 per cell: +x -x +y -y, +z -z
-
-uniform float uOcclusionStrength;
+layout(binding = kLPVUnitGeometryRSM) uniform sampler3D uGeometryRSM;
+layout(binding = kLPVUnitGeometryGBuffer) uniform sampler3D uGeometryGBuffer;
+layout(std430, binding = kLPVBufferTransmit) writeonly buffer Transmit { vec4 transmit[]; };  // 2 per cell: +x -x +y -y, +z -z
 
 const ivec3 kDirections[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0), ivec3(0, 0, 1),
                                       ivec3(0, 0, -1));
@@ -27,9 +25,9 @@ void main() {
         vec3 fd = vec3(kDirections[d]);
         // Geometry samples sit on cell corners: grid point x is texture coordinate (x + 0.5) / (res + 1).
         vec3 face = vec3(cell) + 0.5 - 0.5 * fd;
-        vec3 tc = (face + 0.5) / float(uResolution + 1);
+        vec3 tc = (face + 0.5) / float(uLPV.resolution + 1);
         float blocking = max(oneSided(texture(uGeometryRSM, tc), fd), oneSided(texture(uGeometryGBuffer, tc), fd));
-        t[d] = 1.0 - clamp(uOcclusionStrength * blocking, 0.0, 1.0);
+        t[d] = 1.0 - clamp(uLPV.occlusionStrength * blocking, 0.0, 1.0);
     }
     int i = cellIndex(cell) * 2;
     transmit[i] = vec4(t[0], t[1], t[2], t[3]);

@@ -2,26 +2,26 @@
 // of [0.06136, 0.24477, 0.38774, 0.24477, 0.06136]), or the same weights times a depth
 // similarity exp(-|z_q - z| / (0.05 z)) on the view distance the march stores in alpha, so light
 // does not bleed across depth edges (normalised by the weights kept).
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D uSource;
-layout(binding = 0, rgba16f) uniform writeonly image2D uOut;
+#include "volumetric/volumetric_shared.h"
 
-uniform ivec2 uSize;
-uniform bool uDepthAware;
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = kVolumeUnitSource) uniform sampler2D uSource;
+layout(binding = kVolumeImageTarget, rgba16f) uniform writeonly image2D uOut;
 
 const float kWeights[5] = float[5](0.06136, 0.24477, 0.38774, 0.24477, 0.06136);
 
 void main() {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(q, uSize))) return;
+    ivec2 size = ivec2(uVolume.lowWidth, uVolume.lowHeight);
+    if (any(greaterThanEqual(q, size))) return;
     vec4 centre = texelFetch(uSource, q, 0);
     vec3 sum = vec3(0.0);
     float total = 0.0;
     for (int y = -2; y <= 2; ++y)
         for (int x = -2; x <= 2; ++x) {
-            vec4 s = texelFetch(uSource, clamp(q + ivec2(x, y), ivec2(0), uSize - 1), 0);
+            vec4 s = texelFetch(uSource, clamp(q + ivec2(x, y), ivec2(0), size - 1), 0);
             float w = kWeights[x + 2] * kWeights[y + 2];
-            if (uDepthAware) w *= exp(-abs(s.a - centre.a) / (0.05 * centre.a));
+            if (uVolume.depthAware != 0) w *= exp(-abs(s.a - centre.a) / (0.05 * centre.a));
             sum += w * s.rgb;
             total += w;
         }

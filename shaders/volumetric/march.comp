@@ -12,28 +12,11 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
-layout(binding = 0, rgba16f) uniform image2D uOut;
+layout(binding = kVolumeImageTarget, rgba16f) uniform image2D uOut;
 
-const int kVolumeMaxLights = 4;
-layout(binding = 9) uniform sampler2DShadow uShadow2D[kVolumeMaxLights];
-layout(binding = 13) uniform samplerCubeShadow uShadowCube[kVolumeMaxLights];
-
-uniform mat4 uInvViewProj;
-uniform vec3 uEye;
-uniform ivec2 uSize;      // march buffer
-uniform ivec2 uFullSize;  // the depth buffer
-uniform vec2 uToFull;
-uniform bool uAccumulate;
-uniform int uSamples;
-uniform bool uJitter;
-uniform bool uPCF;
-uniform int uPhase;
-uniform float uG;
-uniform float uK;
-uniform float uIntensity;
-uniform int uLightFirst;  // the batch: uLights[uLightFirst + i], its shadow maps on unit + i
-uniform int uLightCount;
-uniform float uShadowSize;
+// The batch's light i is uLights[uVolume.lightFirst + i], its shadow map at index i.
+layout(binding = kVolumeUnitShadow2D) uniform sampler2DShadow uShadow2D[kVolumeMaxLights];
+layout(binding = kVolumeUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVolumeMaxLights];
 
 float visibility(int i, GPULight l, vec3 x) {
     if (l.info.y == 0) return 1.0;
@@ -44,37 +27,40 @@ float visibility(int i, GPULight l, vec3 x) {
     vec4 c = l.shadowViewProj * vec4(x, 1.0);
     vec3 tc = c.xyz / c.w * 0.5 + 0.5;
     if (any(lessThan(tc.xy, vec2(0.0))) || any(greaterThan(tc.xy, vec2(1.0))) || tc.z > 1.0) return 1.0;
-    if (!uPCF) return texture(uShadow2D[i], tc);
+    if (uVolume.pcf == 0) return texture(uShadow2D[i], tc);
     float sum = 0.0;
     for (int y = -1; y <= 1; ++y)
-        for (int xx = -1; xx <= 1; ++xx) sum += texture(uShadow2D[i], vec3(tc.xy + vec2(xx, y) / uShadowSize, tc.z));
+        for (int xx = -1; xx <= 1; ++xx) sum += texture(uShadow2D[i], vec3(tc.xy + vec2(xx, y) / uVolume.shadowSize, tc.z));
     return sum / 9.0;
 }
 
 void main() {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(q, uSize))) return;
-    ivec2 px = min(ivec2((vec2(q) + 0.5) * uToFull), uFullSize - 1);
+    if (any(greaterThanEqual(q, ivec2(uVolume.lowWidth, uVolume.lowHeight)))) return;
+    ivec2 fullSize = ivec2(uVolume.fullWidth, uVolume.fullHeight);
+    vec3 eye = uVolume.eye.xyz;
+    float sigmaT = uVolume.sigmaT;
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * vec2(uVolume.toFullX, uVolume.toFullY)), fullSize - 1);
     float depth = texelFetch(uDepth, px, 0).r;
-    vec2 uv = (vec2(px) + 0.5) / vec2(uFullSize);
-    vec4 w = uInvViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec2 uv = (vec2(px) + 0.5) / vec2(fullSize);
+    vec4 w = uVolume.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 p = w.xyz / w.w;
-    vec3 d = normalize(p - uEye);
-    float tHit = depth < 1.0 ? length(p - uEye) : 1e30;
+    vec3 d = normalize(p - eye);
+    float tHit = depth < 1.0 ? length(p - eye) : 1e30;
     vec3 L = vec3(0.0);
     float b0, b1;
-    if (clipRayToBox(uEye, d, tHit, b0, b1)) {
+    if (clipRayToBox(eye, d, tHit, b0, b1)) {
         // Interleaved gradient noise (Jimenez 2014): fixed per pixel, so headless renders repeat.
-        float jitter = uJitter ? fract(52.9829189 * fract(dot(vec2(q), vec2(0.06711056, 0.00583715)))) : 0.5;
-        for (int i = 0; i < uLightCount; ++i) {
-            GPULight l = uLights[uLightFirst + i];
+        float jitter = uVolume.jitter != 0 ? fract(52.9829189 * fract(dot(vec2(q), vec2(0.06711056, 0.00583715)))) : 0.5;
+        for (int i = 0; i < uVolume.lightCount; ++i) {
+            GPULight l = uLights[uVolume.lightFirst + i];
             float t0 = b0, t1 = b1;
-            if (!clipRayToLight(l, uEye, d, t0, t1)) continue;
-            float dt = (t1 - t0) / float(uSamples);
+            if (!clipRayToLight(l, eye, d, t0, t1)) continue;
+            float dt = (t1 - t0) / float(uVolume.samples);
             vec3 sum = vec3(0.0);
-            for (int s = 0; s < uSamples; ++s) {
+            for (int s = 0; s < uVolume.samples; ++s) {
                 float t = t0 + (float(s) + jitter) * dt;
-                vec3 x = uEye + t * d;
+                vec3 x = eye + t * d;
                 float vis = visibility(i, l, x);
                 if (vis <= 0.0) continue;  // unlit: skip the rest (seed 004 Fig. 3.19)
                 vec3 toLight, travel;
@@ -90,15 +76,15 @@ void main() {
                     travel = -toLight;
                     atten = lightFalloff(l, dist, dot(travel, l.direction.xyz));
                 }
-                float tLight = exp(-uSigmaT * lightPathInBox(x, toLight, dist));
-                float tView = exp(-uSigmaT * (t - b0));
-                sum += vis * atten * tLight * tView * phaseFunction(uPhase, uG, uK, dot(travel, -d)) * l.color.rgb;
+                float tLight = exp(-sigmaT * lightPathInBox(x, toLight, dist));
+                float tView = exp(-sigmaT * (t - b0));
+                sum += vis * atten * tLight * tView * phaseFunction(uVolume.phase, uVolume.g, uVolume.k, dot(travel, -d)) * l.color.rgb;
             }
-            L += sum * (uSigmaS * dt);
+            L += sum * (uVolume.sigmaS * dt);
         }
     }
-    L *= uIntensity;
+    L *= uVolume.intensity;
     float viewDistance = depth < 1.0 ? tHit : 65504.0;
-    if (uAccumulate) L += imageLoad(uOut, q).rgb;
+    if (uVolume.accumulate != 0) L += imageLoad(uOut, q).rgb;
     imageStore(uOut, q, vec4(L, viewDistance));
 }

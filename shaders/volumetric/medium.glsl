@@ -1,16 +1,13 @@
 // The medium of volumetric lighting, the GLSL twin of gi/volumetric/medium.{h,cpp} (see there
 // for the model): a homogeneous box (the scene's bounds), lights clipped to their cone and range.
+// The box and the coefficients come from VolumeBlock (volumetric_shared.h).
 #include "common/light.h"
-
-uniform vec3 uBoxMin;
-uniform vec3 uBoxMax;
-uniform float uSigmaS;
-uniform float uSigmaT;
+#include "volumetric/volumetric_shared.h"
 
 // [t0, t1] of o + t d (0 <= t <= tMax) inside the box.
 bool clipRayToBox(vec3 o, vec3 d, float tMax, out float t0, out float t1) {
     vec3 inv = 1.0 / d;  // +-inf on an axis-parallel ray: the slab test still works (IEEE)
-    vec3 n = (uBoxMin - o) * inv, f = (uBoxMax - o) * inv;
+    vec3 n = (uVolume.boxMin.xyz - o) * inv, f = (uVolume.boxMax.xyz - o) * inv;
     vec3 lo = min(n, f), hi = max(n, f);
     t0 = max(0.0, max(lo.x, max(lo.y, lo.z)));
     t1 = min(tMax, min(hi.x, min(hi.y, hi.z)));

@@ -1,0 +1,114 @@
+// Parameters, buffer bindings, image bindings and texture units of the LPV's passes, shared by
+// C++ (gi/lpv/lpv.cpp) and GLSL (shaders/lpv/). The geometry pass and shade read the G-buffer on
+// the lighting pass's units (kUnitNormal, kUnitDepth, common/shared.h); the RSM pass reads the
+// light buffer (common/light.h) and the base colour on kUnitBaseColor.
+//
+// One uniform block, LPVBlock, for the eight programs: LPVParams is the union of their fields,
+// grouped by the passes that read them, as in envmap/envmap_shared.h (std140 blocks are active
+// even where unread, so one block keeps one buffer and one binding). Each pass uploads the whole
+// struct, built afresh. Layout as in ssao/ssao_shared.h: mat4, vec4 and scalars in groups of
+// four, so std140 and C++ agree.
+#ifdef __cplusplus
+#pragma once
+#include <glm/glm.hpp>
+#include <cstddef>
+#endif
+#include "common/shared.h"
+#ifdef __cplusplus
+namespace gi::shared {
+using vec4 = glm::vec4;
+using mat4 = glm::mat4;
+#endif
+
+// Cascades at most (LPVSettings::cascadeCount's range): the length of LPVParams::cascadeMinCell.
+GI_CONST int kLPVMaxCascades = 4;
+// SH volumes per cascade in shade: R, G and B.
+GI_CONST int kLPVSHChannels = 3;
+
+// Uniform-buffer binding of LPVBlock.
+GI_CONST int kLPVBlockBinding = 0;
+
+// Shader storage bindings (the light buffer sits apart, at kLightBufferBinding).
+GI_CONST int kLPVBufferInject = 0;           // inject: the SH grid it adds to
+GI_CONST int kLPVBufferGeometry = 0;         // geometry: the corner blocking it adds to
+GI_CONST int kLPVBufferGeometryRSM = 0;      // geometry_resolve: blocking from the RSMs
+GI_CONST int kLPVBufferGeometryGBuffer = 1;  // geometry_resolve: blocking from the G-buffer
+GI_CONST int kLPVBufferSource = 0;           // propagate: the step's input
+GI_CONST int kLPVBufferDestination = 1;      // propagate: the step's output
+GI_CONST int kLPVBufferAccum = 2;            // propagate adds to it, resolve reads it
+GI_CONST int kLPVBufferTransmit = 3;         // transmit writes it, propagate reads it
+
+// Image bindings. The RSM's three images (inject reads all, geometry normal and position).
+GI_CONST int kLPVImageFlux = 0;
+GI_CONST int kLPVImageNormal = 1;
+GI_CONST int kLPVImagePosition = 2;
+// geometry_resolve's two volumes.
+GI_CONST int kLPVImageGeometryRSM = 0;
+GI_CONST int kLPVImageGeometryGBuffer = 1;
+// resolve's three SH volumes.
+GI_CONST int kLPVImageSHR = 0;
+GI_CONST int kLPVImageSHG = 1;
+GI_CONST int kLPVImageSHB = 2;
+// shade's output.
+GI_CONST int kLPVImageIndirect = 0;
+
+// Texture units. transmit samples the two geometry volumes.
+GI_CONST int kLPVUnitGeometryRSM = 0;
+GI_CONST int kLPVUnitGeometryGBuffer = 1;
+// shade: channel c of cascade k on kLPVUnitSH + kLPVSHChannels * k + c, past the G-buffer's units.
+GI_CONST int kLPVUnitSH = 8;
+
+struct LPVParams {
+    // geometry (G-buffer surfels), shade
+    mat4 invViewProj;
+    // rsm
+    mat4 lightViewProj;
+    vec4 baseColor;
+    // inject, geometry
+    vec4 gridMinCell;  // the cascade's grid: xyz its minimum corner, w its cell size
+    // geometry (G-buffer surfels)
+    vec4 cameraPos;    // xyz, w unused
+    // shade
+    vec4 cascadeMinCell[kLPVMaxCascades];  // cascade k: xyz its minimum corner, w its cell size
+    // every pass but rsm
+    int resolution;    // cells per side of a cascade
+    // inject, geometry: the source image (an RSM or the G-buffer); shade: the image written
+    int width;
+    int height;
+    // rsm
+    int lightIndex;    // the light's entry in the light buffer
+    float texelArea;   // directional: projected world area of a texel
+    float texelSolidAngle;  // spot: solid angle of the map's centre texel
+    float metallic;
+    int hasTexture;    // 1: multiply baseColor by the base colour texture
+    float alphaCutoff; // alpha-masked materials; -1 keeps every fragment
+    // inject
+    float nudge;       // cells along the surfel's normal
+    // geometry
+    int fromGBuffer;   // 1: surfels from the G-buffer, 0: from an RSM
+    int stride;        // G-buffer: one sample every `stride` pixels
+    float pixelAngle;  // G-buffer: world size of a pixel at distance 1
+    // propagate
+    int blocking;      // 1: scale each face's flux by its transmittance
+    // transmit
+    float occlusionStrength;
+    // shade
+    int cascadeCount;
+    float intensity;
+    float damping;     // self-illumination damping, 0 .. 1
+    float pad0;
+    float pad1;
+};
+
+#ifdef __cplusplus
+inline constexpr const char* kLPVBlockName = "LPVBlock";
+static_assert(offsetof(LPVParams, baseColor) == 128 && offsetof(LPVParams, cascadeMinCell) == 176);
+static_assert(offsetof(LPVParams, resolution) == 176 + 16 * kLPVMaxCascades);
+static_assert(offsetof(LPVParams, nudge) == 212 + 16 * kLPVMaxCascades && offsetof(LPVParams, pad1) == 252 + 16 * kLPVMaxCascades);
+static_assert(sizeof(LPVParams) == 256 + 16 * kLPVMaxCascades);
+}  // namespace gi::shared
+#else
+layout(std140, binding = kLPVBlockBinding) uniform LPVBlock {
+    LPVParams uLPV;
+};
+#endif
