@@ -1,10 +1,11 @@
-// Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h and
-// shaders/envmap/envmap_shared.h against the layout the driver gives the linked programs' blocks
+// Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h,
+// shaders/envmap/envmap_shared.h and shaders/render/render_shared.h against the layout the driver gives the linked programs' blocks
 // (size, each member's offset, array and matrix strides), a block laid out differently caught by
 // that comparison, and a block a program names, binds or sizes differently from the host refused
 // at construction and at reload with the shader and the block in the message.
 #include "gi/envmap/environment.h"
 #include "gi/gl/uniform_block.h"
+#include "gi/render/renderer.h"
 #include "gi/ssao/ssao.h"
 #include "gi/util/error.h"
 #include "test_util.h"
@@ -49,6 +50,19 @@ std::vector<Member> envMembers() {
             GI_MEMBER(T, pad1),        GI_MEMBER(T, pad2),       GI_MEMBER(T, mipRoughness), GI_MEMBER(T, size),
             GI_MEMBER(T, rowOffset),   GI_MEMBER(T, sourceSize), GI_MEMBER(T, mode),      GI_MEMBER(T, roughness),
             GI_MEMBER(T, diskRadius),  GI_MEMBER(T, samples),    GI_MEMBER(T, pad3),      GI_MEMBER(T, sh)};
+}
+
+std::vector<Member> renderMembers() {
+    using T = RenderParams;
+    return {GI_MEMBER(T, viewProj),    GI_MEMBER(T, invViewProj), GI_MEMBER(T, cameraPos),   GI_MEMBER(T, baseColor),
+            GI_MEMBER(T, emissive),    GI_MEMBER(T, alphaCutoff), GI_MEMBER(T, roughness),   GI_MEMBER(T, metallic),
+            GI_MEMBER(T, hasTexture),  GI_MEMBER(T, lightPos),    GI_MEMBER(T, shadowFar),   GI_MEMBER(T, lightIndex),
+            GI_MEMBER(T, shadowSize),  GI_MEMBER(T, pcfRadius),   GI_MEMBER(T, shadowBias),  GI_MEMBER(T, specular),
+            GI_MEMBER(T, exposureScale), GI_MEMBER(T, toneOp),    GI_MEMBER(T, channelMask), GI_MEMBER(T, direction),
+            GI_MEMBER(T, pan),         GI_MEMBER(T, zoom),        GI_MEMBER(T, level),       GI_MEMBER(T, mode),
+            GI_MEMBER(T, axis),        GI_MEMBER(T, slice),       GI_MEMBER(T, shComponent), GI_MEMBER(T, depthNear),
+            GI_MEMBER(T, depthFar),    GI_MEMBER(T, range),       GI_MEMBER(T, scale),       GI_MEMBER(T, falseColour),
+            GI_MEMBER(T, depthCube),   GI_MEMBER(T, pad0),        GI_MEMBER(T, pad1)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per
@@ -124,6 +138,22 @@ TEST_F(ParamBlock, EnvironmentLayoutMatchesTheDriver) {
     }
 }
 
+// Every raster program of the frame pipeline, as gi/render/renderer.cpp builds them.
+TEST_F(ParamBlock, RenderLayoutMatchesTheDriver) {
+    std::vector<std::pair<std::string, gl::Program>> programs;
+    programs.emplace_back("gbuffer", gl::Program("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}));
+    for (const char* linear : {"LINEAR_DEPTH=0", "LINEAR_DEPTH=1"})
+        programs.emplace_back(linear, gl::Program("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/shadow.frag"}}, {linear}));
+    for (const char* frag : {"composite", "light", "tonemap", "view"})
+        programs.emplace_back(frag, gl::fullscreenProgram(frag, (std::string("render/") + frag + ".frag").c_str()));
+    for (const auto& [name, p] : programs) {
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kRenderBlockName, "uRender", sizeof(RenderParams), renderMembers());
+        EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);
+    }
+}
+
 // A copy of the shader tree to edit, made the shader root for the test's lifetime.
 class ParamBlockShaders : public test::GLTest {
 protected:
@@ -178,6 +208,13 @@ TEST_F(ParamBlockShaders, BlockAtAnotherBindingIsAnErrorNamingTheShader) {
     edit("envmap/envmap_shared.h", "binding = kEnvBlockBinding", "binding = 3");
     std::string msg = errorOf([] { Environment env; });
     EXPECT_NE(msg.find("shader environment.toCube: uniform block EnvBlock is at binding 3, the host binds it at 0"), std::string::npos)
+        << msg;
+}
+
+TEST_F(ParamBlockShaders, RenderBlockAtAnotherBindingIsAnErrorNamingTheShader) {
+    edit("render/render_shared.h", "binding = kRenderBlockBinding", "binding = 2");
+    std::string msg = errorOf([] { Renderer renderer; });
+    EXPECT_NE(msg.find("shader gbuffer: uniform block RenderBlock is at binding 2, the host binds it at 0"), std::string::npos)
         << msg;
 }
 
