@@ -1,12 +1,13 @@
 // Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h,
-// shaders/envmap/envmap_shared.h, shaders/lpv/lpv_shared.h and
-// shaders/volumetric/volumetric_shared.h against the layout the driver gives the linked programs' blocks
+// shaders/envmap/envmap_shared.h, shaders/lpv/lpv_shared.h, shaders/volumetric/volumetric_shared.h
+// and shaders/render/render_shared.h against the layout the driver gives the linked programs' blocks
 // (size, each member's offset, array and matrix strides), a block laid out differently caught by
 // that comparison, and a block a program names, binds or sizes differently from the host refused
 // at construction and at reload with the shader and the block in the message.
 #include "gi/envmap/environment.h"
 #include "gi/gl/uniform_block.h"
 #include "gi/lpv/lpv.h"
+#include "gi/render/renderer.h"
 #include "gi/ssao/ssao.h"
 #include "gi/util/error.h"
 #include "gi/volumetric/volumetric.h"
@@ -74,6 +75,19 @@ std::vector<Member> volumeMembers() {
             GI_MEMBER(T, g),           GI_MEMBER(T, k),           GI_MEMBER(T, intensity),   GI_MEMBER(T, shadowSize),
             GI_MEMBER(T, lightFirst),  GI_MEMBER(T, lightCount),  GI_MEMBER(T, accumulate),  GI_MEMBER(T, depthAware),
             GI_MEMBER(T, attenuateScene), GI_MEMBER(T, pad0),     GI_MEMBER(T, pad1),        GI_MEMBER(T, pad2)};
+}
+
+std::vector<Member> renderMembers() {
+    using T = RenderParams;
+    return {GI_MEMBER(T, viewProj),    GI_MEMBER(T, invViewProj), GI_MEMBER(T, cameraPos),   GI_MEMBER(T, baseColor),
+            GI_MEMBER(T, emissive),    GI_MEMBER(T, alphaCutoff), GI_MEMBER(T, roughness),   GI_MEMBER(T, metallic),
+            GI_MEMBER(T, hasTexture),  GI_MEMBER(T, lightPos),    GI_MEMBER(T, shadowFar),   GI_MEMBER(T, lightIndex),
+            GI_MEMBER(T, shadowSize),  GI_MEMBER(T, pcfRadius),   GI_MEMBER(T, shadowBias),  GI_MEMBER(T, specular),
+            GI_MEMBER(T, exposureScale), GI_MEMBER(T, toneOp),    GI_MEMBER(T, channelMask), GI_MEMBER(T, direction),
+            GI_MEMBER(T, pan),         GI_MEMBER(T, zoom),        GI_MEMBER(T, level),       GI_MEMBER(T, mode),
+            GI_MEMBER(T, axis),        GI_MEMBER(T, slice),       GI_MEMBER(T, shComponent), GI_MEMBER(T, depthNear),
+            GI_MEMBER(T, depthFar),    GI_MEMBER(T, range),       GI_MEMBER(T, scale),       GI_MEMBER(T, falseColour),
+            GI_MEMBER(T, depthCube),   GI_MEMBER(T, pad0),        GI_MEMBER(T, pad1)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per
@@ -161,6 +175,22 @@ TEST_F(ParamBlock, LPVLayoutMatchesTheDriver) {
     }
 }
 
+// Every raster program of the frame pipeline, as gi/render/renderer.cpp builds them.
+TEST_F(ParamBlock, RenderLayoutMatchesTheDriver) {
+    std::vector<std::pair<std::string, gl::Program>> programs;
+    programs.emplace_back("gbuffer", gl::Program("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}));
+    for (const char* linear : {"LINEAR_DEPTH=0", "LINEAR_DEPTH=1"})
+        programs.emplace_back(linear, gl::Program("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/shadow.frag"}}, {linear}));
+    for (const char* frag : {"composite", "light", "tonemap", "view"})
+        programs.emplace_back(frag, gl::fullscreenProgram(frag, (std::string("render/") + frag + ".frag").c_str()));
+    for (const auto& [name, p] : programs) {
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kRenderBlockName, "uRender", sizeof(RenderParams), renderMembers());
+        EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);
+    }
+}
+
 TEST_F(ParamBlock, VolumetricLayoutMatchesTheDriver) {
     for (const char* comp : {"march", "blur", "composite"}) {
         gl::Program p(comp, {{GL_COMPUTE_SHADER, std::string("volumetric/") + comp + ".comp"}});
@@ -234,6 +264,13 @@ TEST_F(ParamBlockShaders, LPVAndVolumetricRefuseABlockAtAnotherBinding) {
     msg = errorOf([] { Volumetric volumetric; });
     EXPECT_NE(msg.find("shader volumetric.march: uniform block VolumeBlock is at binding 3, the host binds it at 0"),
               std::string::npos)
+        << msg;
+}
+
+TEST_F(ParamBlockShaders, RenderBlockAtAnotherBindingIsAnErrorNamingTheShader) {
+    edit("render/render_shared.h", "binding = kRenderBlockBinding", "binding = 2");
+    std::string msg = errorOf([] { Renderer renderer; });
+    EXPECT_NE(msg.find("shader gbuffer: uniform block RenderBlock is at binding 2, the host binds it at 0"), std::string::npos)
         << msg;
 }
 

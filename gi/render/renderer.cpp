@@ -1,6 +1,6 @@
 #include "gi/render/renderer.h"
 
-#include "common/shared.h"
+#include "render/render_shared.h"
 #include "gi/preset/reflect.h"
 #include "gi/util/error.h"
 
@@ -60,7 +60,10 @@ Renderer::Renderer()
       mCompositeProg(gl::fullscreenProgram("composite", "render/composite.frag")),
       mLightProg(gl::fullscreenProgram("light", "render/light.frag")),
       mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
-      mViewProg(gl::fullscreenProgram("view", "render/view.frag")) {
+      mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
+      mBlock(kRenderBlockName, kRenderBlockBinding) {
+    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg})
+        mBlock.requireIn(*p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
     for (const PassInfo& info : passRegistry())
         if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
@@ -293,12 +296,14 @@ void Renderer::renderShadows(const FrameSettings& fs) {
     glViewport(0, 0, mShadowSize, mShadowSize);
     glBindSampler(kUnitBaseColor, mMaterialSampler.id());
 
-    auto drawScene = [&](const gl::Program& prog) {
+    // `params` holds the face's projection; the material fields are filled per draw.
+    auto drawScene = [&](RenderParams& params) {
         mScene->draw([&](const Material& m, int) {
             bool mask = m.alphaMode == AlphaMode::Mask;
-            prog.set("uAlphaCutoff", mask ? m.alphaCutoff : -1.0f);
-            prog.set("uBaseAlpha", m.baseColor.a);
-            prog.set("uHasTexture", mask && m.baseColorTexture >= 0 ? 1 : 0);
+            params.alphaCutoff = mask ? m.alphaCutoff : -1.0f;
+            params.baseColor = m.baseColor;
+            params.hasTexture = mask && m.baseColorTexture >= 0 ? 1 : 0;
+            mBlock.set(params);
             glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
         });
     };
@@ -312,8 +317,9 @@ void Renderer::renderShadows(const FrameSettings& fs) {
         sm.far = mLightBuffer[i].shadow.x;
         if (l.type == LightType::Point) {
             mShadowPointProg.use();
-            mShadowPointProg.set("uLightPos", l.position);
-            mShadowPointProg.set("uFar", sm.far);
+            RenderParams params{};
+            params.lightPos = glm::vec4(l.position, 1.0f);
+            params.shadowFar = sm.far;
             // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
             const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
             const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
@@ -321,15 +327,16 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             for (int face = 0; face < 6; ++face) {
                 glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
                 glClear(GL_DEPTH_BUFFER_BIT);
-                mShadowPointProg.set("uLightViewProj", proj * glm::lookAt(l.position, l.position + dirs[face], ups[face]));
-                drawScene(mShadowPointProg);
+                params.viewProj = proj * glm::lookAt(l.position, l.position + dirs[face], ups[face]);
+                drawScene(params);
             }
         } else {
             mShadowProg.use();
             glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[0].id());
             glClear(GL_DEPTH_BUFFER_BIT);
-            mShadowProg.set("uLightViewProj", sm.viewProj);
-            drawScene(mShadowProg);
+            RenderParams params{};
+            params.viewProj = sm.viewProj;
+            drawScene(params);
         }
     }
     glBindSampler(kUnitBaseColor, 0);
@@ -349,15 +356,17 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     mGBufferProg.use();
-    mGBufferProg.set("uViewProj", viewProj);
+    RenderParams params{};
+    params.viewProj = viewProj;
     glBindSampler(kUnitBaseColor, mMaterialSampler.id());
     mScene->draw([&](const Material& m, int) {
-        mGBufferProg.set("uBaseColor", m.baseColor);
-        mGBufferProg.set("uHasTexture", m.baseColorTexture >= 0 ? 1 : 0);
-        mGBufferProg.set("uAlphaCutoff", m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
-        mGBufferProg.set("uRoughness", m.roughness);
-        mGBufferProg.set("uMetallic", m.metallic);
-        mGBufferProg.set("uEmissive", m.emissive);
+        params.baseColor = m.baseColor;
+        params.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
+        params.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
+        params.roughness = m.roughness;
+        params.metallic = m.metallic;
+        params.emissive = glm::vec4(m.emissive, 0.0f);
+        mBlock.set(params);
         glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
     });
     glBindSampler(kUnitBaseColor, 0);
@@ -385,23 +394,22 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     glBindSampler(kUnitIndirectSpecular, mPointSampler.id());
     glBindTextureUnit(kUnitBRDFLUT, ctx.brdfLUT);
     glBindSampler(kUnitBRDFLUT, mLUTSampler.id());
-    glm::mat4 inv = glm::inverse(viewProj);
+    RenderParams params{};
+    params.invViewProj = glm::inverse(viewProj);
+    params.cameraPos = glm::vec4(fs.camera.eye, 1.0f);
 
     glDisable(GL_BLEND);
     mCompositeProg.use();
-    mCompositeProg.set("uInvViewProj", inv);
-    mCompositeProg.set("uCameraPos", fs.camera.eye);
+    mBlock.set(params);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     mLightProg.use();
-    mLightProg.set("uInvViewProj", inv);
-    mLightProg.set("uCameraPos", fs.camera.eye);
-    mLightProg.set("uSpecular", fs.render.specular ? 1 : 0);
-    mLightProg.set("uPCFRadius", fs.render.pcfRadius);
-    mLightProg.set("uShadowBias", fs.render.shadowBias);
-    mLightProg.set("uShadowSize", float(mShadowSize));
+    params.specular = fs.render.specular ? 1 : 0;
+    params.pcfRadius = fs.render.pcfRadius;
+    params.shadowBias = fs.render.shadowBias;
+    params.shadowSize = float(mShadowSize);
     glBindSampler(kUnitShadow2D, mShadowSampler.id());
     glBindSampler(kUnitShadowCube, mShadowSampler.id());
     // Units of the other shadow type must still hold a texture of the sampler's type.
@@ -410,7 +418,8 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     for (size_t i = 0; i < fs.lights.size(); ++i) {
         const LightSettings& l = fs.lights[i];
         const ShadowMap& sm = mShadows[i];
-        mLightProg.set("uLightIndex", int(i));
+        params.lightIndex = int(i);
+        mBlock.set(params);
         if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
         if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, 0);
@@ -427,8 +436,10 @@ void Renderer::renderToneMap(const FrameSettings& fs) {
     glDisable(GL_BLEND);
     glBindVertexArray(mEmptyVAO.id());
     mToneProg.use();
-    mToneProg.set("uExposureScale", std::exp2(fs.toneMap.exposure));
-    mToneProg.set("uToneOp", int(fs.toneMap.op));
+    RenderParams params{};
+    params.exposureScale = std::exp2(fs.toneMap.exposure);
+    params.toneOp = int(fs.toneMap.op);
+    mBlock.set(params);
     glBindTextureUnit(kUnitSource, mHDR.id());
     glBindSampler(kUnitSource, mPointSampler.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -601,21 +612,22 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
     glDisable(GL_BLEND);
     glBindVertexArray(mEmptyVAO.id());
     mViewProg.use();
-    mViewProg.set("uMode", view.mode);
-    mViewProg.set("uChannelMask", p.channelMask);
-    mViewProg.set("uExposureScale", std::exp2(p.exposure));
-    mViewProg.set("uNear", view.near);
-    mViewProg.set("uFar", view.far);
-    mViewProg.set("uRange", view.range);
-    mViewProg.set("uZoom", std::max(p.zoom, 1e-3f));
-    mViewProg.set("uPan", p.pan);
-    mViewProg.set("uLevel", p.level + float(view.level));
-    mViewProg.set("uAxis", p.axis);
-    mViewProg.set("uSlice", p.slice);
-    mViewProg.set("uSHComponent", p.shComponent);
-    mViewProg.set("uDirection", glm::length(p.direction) > 0.0f ? glm::normalize(p.direction) : glm::vec3(0, 1, 0));
-    mViewProg.set("uFalseColour", p.falseColour ? 1 : 0);
-    mViewProg.set("uScale", view.scale);
+    RenderParams params{};
+    params.mode = view.mode;
+    params.channelMask = p.channelMask;
+    params.exposureScale = std::exp2(p.exposure);
+    params.depthNear = view.near;
+    params.depthFar = view.far;
+    params.range = view.range;
+    params.zoom = std::max(p.zoom, 1e-3f);
+    params.pan = p.pan;
+    params.level = p.level + float(view.level);
+    params.axis = p.axis;
+    params.slice = p.slice;
+    params.shComponent = p.shComponent;
+    params.direction = glm::vec4(glm::length(p.direction) > 0.0f ? glm::normalize(p.direction) : glm::vec3(0, 1, 0), 0.0f);
+    params.falseColour = p.falseColour ? 1 : 0;
+    params.scale = view.scale;
     GLuint units[3] = {GLuint(kUnitSource), 0, 0};
     int count = 1;
     GLuint sampler = mPointSampler.id();
@@ -633,7 +645,8 @@ void Renderer::drawView(const DebugView& view, const ViewParams& p) const {
         units[2] = kUnitSource3D + 2;
         count = view.extra[0] ? 3 : 1;
     }
-    mViewProg.set("uDepthCube", depthBits > 0 ? 1 : 0);
+    params.depthCube = depthBits > 0 ? 1 : 0;
+    mBlock.set(params);
     const GLuint textures[3] = {view.texture, view.extra[0], view.extra[1]};
     for (int i = 0; i < count; ++i) {
         glBindTextureUnit(units[i], textures[i]);

@@ -16,12 +16,14 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/timer.h"
+#include "gi/gl/uniform_block.h"
 #include "gi/render/gpu_scene.h"
 #include "gi/render/lights.h"
 #include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
 #include "gi/scene/camera.h"
 #include "gi/scene/scene.h"
+#include "render/render_shared.h"
 
 #include <memory>
 #include <optional>
@@ -117,6 +119,7 @@ private:
 
     std::unique_ptr<GPUScene> mScene;
     gl::Program mGBufferProg, mShadowProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
+    gl::UniformBlock<shared::RenderParams> mBlock;  // every program above reads it
     gl::VertexArray mEmptyVAO;
     gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler, mLUTSampler;
     gl::Sampler mMipPointSampler;  // views of one mip (cube maps): nearest texels of the chosen level

@@ -9,12 +9,6 @@
 layout(binding = kUnitShadow2D) uniform sampler2DShadow uShadow2D;
 layout(binding = kUnitShadowCube) uniform samplerCubeShadow uShadowCube;
 
-uniform int uLightIndex;        // into uLights
-uniform float uShadowSize;      // texels per side
-uniform float uPCFRadius;       // texels
-uniform float uShadowBias;      // texels
-uniform bool uSpecular;
-
 in vec2 vUV;
 out vec4 oColor;
 
@@ -22,12 +16,12 @@ const int kPCFTaps = 2;  // (2 * kPCFTaps + 1)^2 taps
 
 float shadow2D(GPULight l, vec3 P, vec3 N, vec3 L, float dist) {
     float texel = l.info.x == kLightDirectional ? l.shadow.y : l.shadow.y * dist;
-    vec3 Pb = P + N * (uShadowBias * texel) + L * (0.5 * uShadowBias * texel);
+    vec3 Pb = P + N * (uRender.shadowBias * texel) + L * (0.5 * uRender.shadowBias * texel);
     vec4 c = l.shadowViewProj * vec4(Pb, 1.0);
     vec3 ndc = c.xyz / c.w;
     vec3 tc = ndc * 0.5 + 0.5;
     if (any(lessThan(tc.xy, vec2(0.0))) || any(greaterThan(tc.xy, vec2(1.0))) || tc.z > 1.0) return 1.0;
-    float step = uPCFRadius / (float(kPCFTaps) * uShadowSize);
+    float step = uRender.pcfRadius / (float(kPCFTaps) * uRender.shadowSize);
     float sum = 0.0;
     for (int y = -kPCFTaps; y <= kPCFTaps; ++y)
         for (int x = -kPCFTaps; x <= kPCFTaps; ++x)
@@ -37,13 +31,13 @@ float shadow2D(GPULight l, vec3 P, vec3 N, vec3 L, float dist) {
 
 float shadowCube(GPULight l, vec3 P, vec3 N, vec3 L, float dist) {
     float texel = l.shadow.y * dist;
-    vec3 Pb = P + N * (uShadowBias * texel) + L * (0.5 * uShadowBias * texel);
+    vec3 Pb = P + N * (uRender.shadowBias * texel) + L * (0.5 * uRender.shadowBias * texel);
     vec3 d = Pb - l.position.xyz;
     float ref = length(d) / l.shadow.x;
     vec3 dn = normalize(d);
     vec3 t = normalize(cross(abs(dn.y) < 0.99 ? vec3(0, 1, 0) : vec3(1, 0, 0), dn));
     vec3 b = cross(dn, t);
-    float step = 2.0 * uPCFRadius / (float(kPCFTaps) * uShadowSize);
+    float step = 2.0 * uRender.pcfRadius / (float(kPCFTaps) * uRender.shadowSize);
     float sum = 0.0;
     for (int y = -kPCFTaps; y <= kPCFTaps; ++y)
         for (int x = -kPCFTaps; x <= kPCFTaps; ++x)
@@ -56,7 +50,7 @@ void main() {
     Surface s;
     if (!readSurface(px, vUV, s)) discard;
 
-    GPULight l = uLights[uLightIndex];
+    GPULight l = uLights[uRender.lightIndex];
     // Normalised once more, as this pass always did: the GPU's normalize rounds unlike the CPU's,
     // and leaving it out would move pixels.
     vec3 axis = normalize(l.direction.xyz);
@@ -71,7 +65,7 @@ void main() {
         L = toLight / max(dist, 1e-6);
         E *= lightFalloff(l, dist, dot(-L, axis));
     }
-    vec3 f = evalBRDFCos(s.N, s.V, L, s.baseColor, s.metallic, s.roughness, uSpecular);
+    vec3 f = evalBRDFCos(s.N, s.V, L, s.baseColor, s.metallic, s.roughness, uRender.specular != 0);
     if (all(equal(f, vec3(0.0))) || all(equal(E, vec3(0.0)))) discard;
     float vis = 1.0;
     if (l.info.y != 0) vis = l.info.x == kLightPoint ? shadowCube(l, s.P, s.N, L, dist) : shadow2D(l, s.P, s.N, L, dist);

@@ -1,8 +1,8 @@
 // Shadow pass: world-space scene into the light's clip space.
+#include "render/render_shared.h"
+
 layout(location = 0) in vec3 aPosition;
 layout(location = 2) in vec2 aUV;
-
-uniform mat4 uLightViewProj;
 
 out vec3 vWorld;
 out vec2 vUV;
@@ -10,5 +10,5 @@ out vec2 vUV;
 void main() {
     vWorld = aPosition;
     vUV = aUV;
-    gl_Position = uLightViewProj * vec4(aPosition, 1.0);
+    gl_Position = uRender.viewProj * vec4(aPosition, 1.0);
 }

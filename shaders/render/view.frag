@@ -1,7 +1,7 @@
 // Debug views of any texture: channel select, exposure, zoom and pan, depth linearisation and
 // cube maps unfolded as a cross or shown as a latlong (equirectangular) image, at any mip. Used
 // by the editor's buffer previewer and Roughness mips panel, and `gi-render --views`.
-#include "common/shared.h"
+#include "render/render_shared.h"
 #include "common/sh.h"
 #include "common/color.glsl"
 
@@ -11,23 +11,6 @@ layout(binding = kUnitSource3D) uniform sampler3D uVolumeR;
 layout(binding = kUnitSource3D + 1) uniform sampler3D uVolumeG;
 layout(binding = kUnitSource3D + 2) uniform sampler3D uVolumeB;
 layout(binding = kUnitSourceU3D) uniform usampler3D uVolumeU;
-uniform int uAxis;           // volume views: slice normal axis
-uniform float uSlice;        // volume views: slice position 0..1
-uniform int uSHComponent;    // -1: irradiance / blocking towards uDirection; else that coefficient
-uniform vec3 uDirection;
-uniform bool uFalseColour;
-uniform float uScale;        // stored value to radiance
-uniform int uMode;
-uniform vec4 uChannelMask;   // (1,1,1,0) shows RGB; a single 1 shows that channel as grey
-uniform float uExposureScale;
-uniform float uNear;
-uniform float uFar;
-uniform float uRange;       // distance shown as black in linear depth views
-uniform vec2 uPan;           // texture-space offset of the view centre
-uniform float uZoom;         // 1 shows the whole texture
-uniform float uLevel;        // mip level
-uniform bool uDepthCube;     // cube views: a depth cube (point shadow map) shows its one channel as grey
-
 in vec2 vUV;
 out vec4 oColor;
 
@@ -65,58 +48,58 @@ vec3 falseColour(float x) {
 }
 
 vec3 volumeCoord(vec2 uv) {
-    if (uAxis == 0) return vec3(uSlice, uv.y, uv.x);
-    if (uAxis == 2) return vec3(uv, uSlice);
-    return vec3(uv.x, uSlice, uv.y);
+    if (uRender.axis == 0) return vec3(uRender.slice, uv.y, uv.x);
+    if (uRender.axis == 2) return vec3(uv, uRender.slice);
+    return vec3(uv.x, uRender.slice, uv.y);
 }
 
 void main() {
-    vec2 uv = (vUV - 0.5) / uZoom + 0.5 + uPan;
+    vec2 uv = (vUV - 0.5) / uRender.zoom + 0.5 + uRender.pan;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
         float checker = mod(floor(gl_FragCoord.x / 8.0) + floor(gl_FragCoord.y / 8.0), 2.0);
         oColor = vec4(vec3(0.1 + 0.05 * checker), 1.0);
         return;
     }
     vec4 v;
-    if (uMode >= kViewVoxelColor && uMode <= kViewVoxelPackedNormal) {
+    if (uRender.mode >= kViewVoxelColor && uRender.mode <= kViewVoxelPackedNormal) {
         // Voxel volumes: the nearest voxel of mip `level`, so single voxels stay visible.
         vec3 p = volumeCoord(uv);
         vec3 c;
-        if (uMode >= kViewVoxelPacked) {
+        if (uRender.mode >= kViewVoxelPacked) {
             ivec3 size = textureSize(uVolumeU, 0);
             uint packedValue = texelFetch(uVolumeU, clamp(ivec3(p * vec3(size)), ivec3(0), size - 1), 0).r;
             c = unpackUnorm4x8(packedValue).rgb;
-            if (uMode == kViewVoxelPacked) c = linearToSRGB(c * uExposureScale);
+            if (uRender.mode == kViewVoxelPacked) c = linearToSRGB(c * uRender.exposureScale);
         } else {
-            int level = int(uLevel);
+            int level = int(uRender.level);
             ivec3 size = textureSize(uVolumeR, level);
             vec4 s = texelFetch(uVolumeR, clamp(ivec3(p * vec3(size)), ivec3(0), size - 1), level);
-            c = uMode == kViewVoxelAlpha ? vec3(s.a) : linearToSRGB(s.rgb * uExposureScale);
-            if (uFalseColour) c = falseColour(uMode == kViewVoxelAlpha ? s.a : max(s.r, max(s.g, s.b)) * uExposureScale);
+            c = uRender.mode == kViewVoxelAlpha ? vec3(s.a) : linearToSRGB(s.rgb * uRender.exposureScale);
+            if (uRender.falseColour != 0) c = falseColour(uRender.mode == kViewVoxelAlpha ? s.a : max(s.r, max(s.g, s.b)) * uRender.exposureScale);
         }
         oColor = vec4(c, 1.0);
         return;
     }
-    if (uMode == kViewSHVolume || uMode == kViewVolume) {
+    if (uRender.mode == kViewSHVolume || uRender.mode == kViewVolume) {
         vec3 p = volumeCoord(uv);
         vec3 c;
-        if (uMode == kViewSHVolume) {
+        if (uRender.mode == kViewSHVolume) {
             vec4 r = texture(uVolumeR, p), g = texture(uVolumeG, p), b = texture(uVolumeB, p);
-            if (uSHComponent >= 0) c = vec3(r[uSHComponent], g[uSHComponent], b[uSHComponent]) * uScale;
-            // Irradiance on a surface facing uDirection: light travelling along -uDirection.
-            else c = max(vec3(dot(r, shCosLobe(-uDirection)), dot(g, shCosLobe(-uDirection)), dot(b, shCosLobe(-uDirection))), 0.0) * uScale / kPi;
+            if (uRender.shComponent >= 0) c = vec3(r[uRender.shComponent], g[uRender.shComponent], b[uRender.shComponent]) * uRender.scale;
+            // Irradiance on a surface facing `direction`: light travelling against it.
+            else c = max(vec3(dot(r, shCosLobe(-uRender.direction.xyz)), dot(g, shCosLobe(-uRender.direction.xyz)), dot(b, shCosLobe(-uRender.direction.xyz))), 0.0) * uRender.scale / kPi;
         } else {
             vec4 gv = texture(uVolumeR, p);
-            c = vec3(uSHComponent >= 0 ? gv[uSHComponent] : clamp(shEval(gv, -uDirection), 0.0, 1.0));
+            c = vec3(uRender.shComponent >= 0 ? gv[uRender.shComponent] : clamp(shEval(gv, -uRender.direction.xyz), 0.0, 1.0));
         }
-        c *= uExposureScale;
+        c *= uRender.exposureScale;
         float m = max(c.r, max(c.g, c.b));
-        oColor = vec4(uFalseColour ? falseColour(m) : linearToSRGB(c), 1.0);
+        oColor = vec4(uRender.falseColour != 0 ? falseColour(m) : linearToSRGB(c), 1.0);
         return;
     }
-    if (uMode == kViewCubeCross || uMode == kViewCubeLatLong) {
+    if (uRender.mode == kViewCubeCross || uRender.mode == kViewCubeLatLong) {
         vec3 dir;
-        if (uMode == kViewCubeCross) {
+        if (uRender.mode == kViewCubeCross) {
             bool inside;
             dir = cubeCross(vec2(uv.x, 1.0 - uv.y), inside);
             if (!inside) {
@@ -126,28 +109,28 @@ void main() {
         } else {
             dir = latLongDirection(vec2(uv.x, 1.0 - uv.y));
         }
-        v = textureLod(uSourceCube, dir, uLevel);
-        if (uDepthCube) v = vec4(v.rrr, 1.0);
+        v = textureLod(uSourceCube, dir, uRender.level);
+        if (uRender.depthCube != 0) v = vec4(v.rrr, 1.0);
     } else {
-        v = textureLod(uSource, uv, uLevel);
+        v = textureLod(uSource, uv, uRender.level);
     }
     vec3 c;
-    bool single = dot(uChannelMask, vec4(1.0)) < 1.5;
-    if (uMode == kViewNormal) {
+    bool single = dot(uRender.channelMask, vec4(1.0)) < 1.5;
+    if (uRender.mode == kViewNormal) {
         c = v.xyz * 0.5 + 0.5;
-    } else if (uMode == kViewPosition) {
+    } else if (uRender.mode == kViewPosition) {
         c = v.w > 0.0 ? fract(v.xyz) : vec3(0.0);
-    } else if (uMode == kViewLinearDepth) {
+    } else if (uRender.mode == kViewLinearDepth) {
         float z = v.r * 2.0 - 1.0;
-        float linear = 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
-        c = vec3(1.0 - clamp(linear / uRange, 0.0, 1.0));
-    } else if (uMode == kViewRawDepth) {
+        float linear = 2.0 * uRender.depthNear * uRender.depthFar / (uRender.depthFar + uRender.depthNear - z * (uRender.depthFar - uRender.depthNear));
+        c = vec3(1.0 - clamp(linear / uRender.range, 0.0, 1.0));
+    } else if (uRender.mode == kViewRawDepth) {
         c = vec3(v.r);
     } else {
         c = v.rgb;
     }
-    if (single) c = vec3(dot(v, uChannelMask));
-    if (uMode == kViewColor || uMode == kViewCubeCross || uMode == kViewCubeLatLong) c = linearToSRGB(c * uExposureScale);
-    else if (uMode == kViewDisplay) c = clamp(c * uExposureScale, 0.0, 1.0);
+    if (single) c = vec3(dot(v, uRender.channelMask));
+    if (uRender.mode == kViewColor || uRender.mode == kViewCubeCross || uRender.mode == kViewCubeLatLong) c = linearToSRGB(c * uRender.exposureScale);
+    else if (uRender.mode == kViewDisplay) c = clamp(c * uRender.exposureScale, 0.0, 1.0);
     oColor = vec4(c, 1.0);
 }

@@ -1,0 +1,87 @@
+// Parameters of the frame pipeline's raster passes, shared by C++ (gi/render/renderer.cpp) and
+// GLSL (shaders/render/): gbuffer, shadow (2D and point), composite, light, tonemap and view.
+// Their texture units stay in common/shared.h: the G-buffer units are read by the techniques'
+// passes too, and kUnitBaseColor and kUnitSource by the RSM, VCT voxelisation and SSAO blur.
+//
+// One uniform block, RenderBlock, for the seven programs: RenderParams is the union of their
+// fields, grouped by the passes that read them (as envmap/envmap_shared.h does, for the same
+// reason: std140 blocks are active even where unread). Each pass uploads the whole struct, built
+// afresh, so no pass reads a field another left behind. The material fields change per draw and
+// the light index per light: the pass uploads the struct again before each of those draws, which
+// GL orders after the draws before it.
+// Layout as in ssao/ssao_shared.h: mat4, vec4 and scalars in groups of four (one vec2 on an
+// 8-byte boundary), so std140 and C++ agree.
+#ifdef __cplusplus
+#pragma once
+#include <glm/glm.hpp>
+#include <cstddef>
+#endif
+#include "common/shared.h"
+#ifdef __cplusplus
+namespace gi::shared {
+using vec2 = glm::vec2;
+using vec4 = glm::vec4;
+using mat4 = glm::mat4;
+#endif
+
+// Uniform-buffer binding of RenderBlock.
+GI_CONST int kRenderBlockBinding = 0;
+
+struct RenderParams {
+    // gbuffer, shadow
+    mat4 viewProj;       // world to clip: the camera's (gbuffer), the light's or a cube face's (shadow)
+    // composite, light
+    mat4 invViewProj;    // clip to world of the camera
+    vec4 cameraPos;      // xyz: the camera position, w unused
+    // gbuffer, shadow: the draw's material
+    vec4 baseColor;      // linear RGBA factor; the shadow pass reads alpha only
+    vec4 emissive;       // rgb: emitted radiance, w unused
+    float alphaCutoff;   // < 0: opaque; else fragments with alpha below it are discarded
+    float roughness;     // perceptual, 0..1
+    float metallic;      // 0..1
+    int hasTexture;      // 1: the base colour is multiplied by the texture on kUnitBaseColor
+    // shadow with LINEAR_DEPTH (point lights)
+    vec4 lightPos;       // xyz: the light's position, w unused
+    float shadowFar;     // the cube map stores distance / shadowFar
+    // light
+    int lightIndex;      // into uLights (common/light.h)
+    float shadowSize;    // shadow-map texels per side
+    float pcfRadius;     // texels
+    float shadowBias;    // texels
+    int specular;        // 0: diffuse only
+    // tonemap, view
+    float exposureScale; // 2^EV
+    // tonemap
+    int toneOp;          // kToneLinear, kToneReinhard or kToneACES
+    // view
+    vec4 channelMask;    // (1,1,1,0) shows RGB; a single 1 shows that channel as grey
+    vec4 direction;      // xyz: unit normal of the surface whose irradiance a volume view shows
+    vec2 pan;            // texture-space offset of the view centre
+    float zoom;          // 1 shows the whole texture
+    float level;         // mip level
+    int mode;            // kView* of common/shared.h
+    int axis;            // volume views: slice normal axis, 0 x, 1 y, 2 z
+    float slice;         // volume views: slice position 0..1
+    int shComponent;     // -1: irradiance / blocking towards direction; else that coefficient
+    float depthNear;     // linear depth views: the projection's near and far planes
+    float depthFar;
+    float range;         // distance shown as black in linear depth views
+    float scale;         // stored value to radiance (SH volumes)
+    int falseColour;     // 1: magnitudes as a colour ramp
+    int depthCube;       // cube views: 1 for a depth cube (point shadow map), shown as grey
+    float pad0;
+    float pad1;
+};
+
+#ifdef __cplusplus
+inline constexpr const char* kRenderBlockName = "RenderBlock";
+static_assert(offsetof(RenderParams, cameraPos) == 128 && offsetof(RenderParams, alphaCutoff) == 176);
+static_assert(offsetof(RenderParams, lightPos) == 192 && offsetof(RenderParams, toneOp) == 236);
+static_assert(offsetof(RenderParams, channelMask) == 240 && offsetof(RenderParams, pan) == 272);
+static_assert(offsetof(RenderParams, depthNear) == 304 && sizeof(RenderParams) == 336);
+}  // namespace gi::shared
+#else
+layout(std140, binding = kRenderBlockBinding) uniform RenderBlock {
+    RenderParams uRender;
+};
+#endif
