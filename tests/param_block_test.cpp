@@ -69,7 +69,8 @@ std::vector<Member> vctMembers() {
             GI_MEMBER(T, levelMinCell),  GI_MEMBER(T, levelWrap),    GI_MEMBER(T, invViewProj),   GI_MEMBER(T, cameraPos),
             GI_MEMBER(T, imageSize),     GI_MEMBER(T, toFull),       GI_MEMBER(T, specularAperture), GI_MEMBER(T, vao),
             GI_MEMBER(T, vaoStrength),   GI_MEMBER(T, intensity),    GI_MEMBER(T, specularCone),  GI_MEMBER(T, nearPlane),
-            GI_MEMBER(T, farPlane),      GI_MEMBER(T, pad1),         GI_MEMBER(T, pad2)};
+            GI_MEMBER(T, farPlane),      GI_MEMBER(T, exposureScale), GI_MEMBER(T, opacityThreshold), GI_MEMBER(T, viewSource),
+            GI_MEMBER(T, viewMip),       GI_MEMBER(T, edges),        GI_MEMBER(T, pad1),          GI_MEMBER(T, background)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per
@@ -156,6 +157,7 @@ TEST_F(ParamBlock, VCTLayoutMatchesTheDriver) {
                                    {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
                                    {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}),
           "voxelize");
+    check(gl::fullscreenProgram("voxelView", "vct/voxel_view.frag"), "voxelView");
     for (const char* comp : {"clear", "inject", "resolve", "mip", "upsample", "compact"})
         check(gl::Program(comp, {{GL_COMPUTE_SHADER, std::string("vct/") + comp + ".comp"}}), comp);
     struct Variant {

@@ -35,6 +35,9 @@ GI_CONST int kVCTUnitShadowCube = 13;  // inject: cube shadow maps (13..16)
 GI_CONST int kVCTUnitMipSource = 0;    // mip: the volume read
 GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
 GI_CONST int kVCTUnitLowSpecular = 3;
+GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
+GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo, normal or emission)
+GI_CONST int kVCTUnitViewRadiance = 2;   // premultiplied radiance + opacity, with mips
 
 // Image bindings. The voxel volumes keep one binding in every pass that reads or writes them;
 // the volumes a pass writes besides take the bindings that pass leaves free.
@@ -117,8 +120,8 @@ struct VCTParams {
     vec4 cones[kVCTMaxCones];              // xyz: tangent-space axis, w: normalised weight
     vec4 levelMinCell[kVCTMaxLevels];      // xyz: grid minimum, w: voxel size
     ivec4 levelWrap[kVCTMaxLevels];        // xyz: toroidal offsets (clipmap), else 0
-    // trace, upsample
-    mat4 invViewProj;    // trace
+    // trace, upsample, voxel view
+    mat4 invViewProj;    // trace, voxel view
     vec4 cameraPos;      // trace: xyz, w unused
     ivec4 imageSize;     // xy: the traced image (the G-buffer's size times traceScale), zw: the G-buffer's
     vec4 toFull;         // xy: full-resolution pixels per traced pixel, zw unused
@@ -129,8 +132,13 @@ struct VCTParams {
     int specularCone;
     float nearPlane;     // upsample: the camera's clip planes
     float farPlane;
+    float exposureScale;  // voxel view: radiance and emission
+    float opacityThreshold;  // voxel view: radiance voxels below it are empty
+    int viewSource;      // voxel view: VoxelViewSource, 0 albedo, 1 normal, 2 emission, 3 radiance
+    int viewMip;         // voxel view: the radiance mip marched (0 for the packed sources)
+    int edges;           // voxel view: darken voxel edges
     float pad1;
-    float pad2;
+    vec4 background;     // voxel view: xyz, display-encoded; w unused
 };
 
 #ifdef __cplusplus
@@ -140,7 +148,7 @@ static_assert(offsetof(VCTParams, lightFirst) == 128 && offsetof(VCTParams, dest
 static_assert(offsetof(VCTParams, coneCount) == 176 && offsetof(VCTParams, cones) == 208);
 static_assert(offsetof(VCTParams, levelMinCell) == 208 + 16 * kVCTMaxCones);
 static_assert(offsetof(VCTParams, invViewProj) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels));
-static_assert(sizeof(VCTParams) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 32);
+static_assert(sizeof(VCTParams) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 64);
 }  // namespace gi::vct
 #else
 layout(std140, binding = kVCTBlockBinding) uniform VCTBlock {
