@@ -1,16 +1,20 @@
 // Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h,
-// shaders/envmap/envmap_shared.h, shaders/lpv/lpv_shared.h, shaders/volumetric/volumetric_shared.h
-// and shaders/render/render_shared.h against the layout the driver gives the linked programs' blocks
-// (size, each member's offset, array and matrix strides), a block laid out differently caught by
+// shaders/envmap/envmap_shared.h, shaders/lpv/lpv_shared.h, shaders/volumetric/volumetric_shared.h,
+// shaders/render/render_shared.h and shaders/vct/vct_shared.h against the layout the driver gives
+// the linked programs' blocks (size, each member's offset, array and matrix strides), a block laid out differently caught by
 // that comparison, and a block a program names, binds or sizes differently from the host refused
-// at construction and at reload with the shader and the block in the message.
+// at construction, at reload and at a recompile, with the shader and the block in the message.
 #include "gi/envmap/environment.h"
 #include "gi/gl/uniform_block.h"
 #include "gi/lpv/lpv.h"
+#include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
+#include "gi/scene/scene.h"
 #include "gi/ssao/ssao.h"
 #include "gi/util/error.h"
+#include "gi/vct/vct.h"
 #include "gi/volumetric/volumetric.h"
+
 #include "test_util.h"
 
 #include <cstddef>
@@ -88,6 +92,23 @@ std::vector<Member> renderMembers() {
             GI_MEMBER(T, axis),        GI_MEMBER(T, slice),       GI_MEMBER(T, shComponent), GI_MEMBER(T, depthNear),
             GI_MEMBER(T, depthFar),    GI_MEMBER(T, range),       GI_MEMBER(T, scale),       GI_MEMBER(T, falseColour),
             GI_MEMBER(T, depthCube),   GI_MEMBER(T, pad0),        GI_MEMBER(T, pad1)};
+}
+
+std::vector<Member> vctMembers() {
+    using T = vct::VCTParams;
+    return {GI_MEMBER(T, gridMin),       GI_MEMBER(T, wrapOffset),   GI_MEMBER(T, clipMin),       GI_MEMBER(T, clipMax),
+            GI_MEMBER(T, resolution),    GI_MEMBER(T, cellSize),     GI_MEMBER(T, emissionScale), GI_MEMBER(T, emissionRange),
+            GI_MEMBER(T, baseColor),     GI_MEMBER(T, emissive),     GI_MEMBER(T, hasTexture),    GI_MEMBER(T, alphaCutoff),
+            GI_MEMBER(T, metallic),      GI_MEMBER(T, pad0),         GI_MEMBER(T, lightFirst),    GI_MEMBER(T, lightCount),
+            GI_MEMBER(T, accumulate),    GI_MEMBER(T, sh),           GI_MEMBER(T, destSize),      GI_MEMBER(T, sourceLevel),
+            GI_MEMBER(T, direction),     GI_MEMBER(T, sourceOffsetX), GI_MEMBER(T, destOffsetX),  GI_MEMBER(T, coneCount),
+            GI_MEMBER(T, tanHalf),       GI_MEMBER(T, maxDistance),  GI_MEMBER(T, occlusionDistance), GI_MEMBER(T, levelCount),
+            GI_MEMBER(T, maxLod),        GI_MEMBER(T, nudge),        GI_MEMBER(T, stepMultiplier), GI_MEMBER(T, cones),
+            GI_MEMBER(T, levelMinCell),  GI_MEMBER(T, levelWrap),    GI_MEMBER(T, invViewProj),   GI_MEMBER(T, cameraPos),
+            GI_MEMBER(T, imageSize),     GI_MEMBER(T, toFull),       GI_MEMBER(T, specularAperture), GI_MEMBER(T, vao),
+            GI_MEMBER(T, vaoStrength),   GI_MEMBER(T, intensity),    GI_MEMBER(T, specularCone),  GI_MEMBER(T, nearPlane),
+            GI_MEMBER(T, farPlane),      GI_MEMBER(T, exposureScale), GI_MEMBER(T, opacityThreshold), GI_MEMBER(T, viewSource),
+            GI_MEMBER(T, viewMip),       GI_MEMBER(T, edges),        GI_MEMBER(T, pad1),          GI_MEMBER(T, background)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per
@@ -199,6 +220,32 @@ TEST_F(ParamBlock, VolumetricLayoutMatchesTheDriver) {
     }
 }
 
+// Every VCT program, and the bounce and trace programs in each variant the host compiles (the
+// level count, anisotropic and SH voxels), lay the block out as C++ does.
+TEST_F(ParamBlock, VCTLayoutMatchesTheDriver) {
+    auto check = [](const gl::Program& p, const std::string& what) {
+        std::vector<std::string> diffs = layoutDifferences(p.id(), vct::kVCTBlockName, "uVCT", sizeof(vct::VCTParams), vctMembers());
+        EXPECT_TRUE(diffs.empty()) << what << ":\n" << joined(diffs);
+    };
+    check(gl::Program("voxelize", {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
+                                   {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
+                                   {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}),
+          "voxelize");
+    check(gl::fullscreenProgram("voxelView", "vct/voxel_view.frag"), "voxelView");
+    for (const char* comp : {"clear", "inject", "resolve", "mip", "upsample", "compact"})
+        check(gl::Program(comp, {{GL_COMPUTE_SHADER, std::string("vct/") + comp + ".comp"}}), comp);
+    struct Variant {
+        int levels, aniso, sh;
+    };
+    for (Variant v : {Variant{1, 0, 0}, Variant{1, 1, 0}, Variant{1, 0, 1}, Variant{3, 0, 0}, Variant{vct::kVCTMaxLevels, 0, 0}})
+        for (const char* comp : {"bounce", "trace"}) {
+            std::vector<std::string> defines = {"VCT_LEVELS " + std::to_string(v.levels), "VCT_ANISO " + std::to_string(v.aniso),
+                                                "VCT_SH " + std::to_string(v.sh)};
+            std::string what = std::string(comp) + " levels " + defines[0] + ", " + defines[1] + ", " + defines[2];
+            check(gl::Program(comp, {{GL_COMPUTE_SHADER, std::string("vct/") + comp + ".comp"}}, defines), what);
+        }
+}
+
 // A copy of the shader tree to edit, made the shader root for the test's lifetime.
 class ParamBlockShaders : public test::GLTest {
 protected:
@@ -298,6 +345,28 @@ TEST_F(ParamBlockShaders, ReloadRechecksTheBlock) {
     edit("ssao/ssao_shared.h", "binding = 2", "binding = kSSAOBlockBinding");
     log.clear();
     EXPECT_TRUE(ssao.reloadShaders(log)) << log;
+}
+
+// The bounce and trace programs, built when the voxel layout changes, check the block too: at
+// the recompile and at a reload.
+TEST_F(ParamBlockShaders, VCTProgramsCheckTheBlockAtRecompileAndReload) {
+    Scene scene = makeBuiltinScene("cornell");
+    Preset preset;
+    preset.header.technique.name = "vct";
+    preset.vct.gridResolution = 16;
+    preset.vct.bounceCount = 2;
+    FrameSettings fs = frameSettings(preset, scene, 32, 24);
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    edit("vct/vct_shared.h", "binding = kVCTBlockBinding", "binding = 3");
+    std::string log;
+    EXPECT_FALSE(r.reloadShaders(log));
+    EXPECT_NE(log.find("shader vct.voxelize: uniform block VCTBlock is at binding 3, the host binds it at 0"), std::string::npos) << log;
+    EXPECT_NE(log.find("shader vct.trace: uniform block VCTBlock is at binding 3"), std::string::npos) << log;
+    fs.vct.sh = true;  // recompiles bounce and trace
+    std::string msg = errorOf([&] { r.render(fs); });
+    EXPECT_NE(msg.find("shader vct.bounce: uniform block VCTBlock is at binding 3"), std::string::npos) << msg;
 }
 
 }  // namespace

@@ -85,7 +85,10 @@ VCT::VCT()
       mResolveProg("vct.resolve", {{GL_COMPUTE_SHADER, "vct/resolve.comp"}}),
       mMipProg("vct.mip", {{GL_COMPUTE_SHADER, "vct/mip.comp"}}),
       mUpsampleProg("vct.upsample", {{GL_COMPUTE_SHADER, "vct/upsample.comp"}}),
-      mCompactProg("vct.compact", {{GL_COMPUTE_SHADER, "vct/compact.comp"}}) {
+      mCompactProg("vct.compact", {{GL_COMPUTE_SHADER, "vct/compact.comp"}}),
+      mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
+    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg})
+        mBlock.requireIn(*p);
     mEmptyFBO = gl::createFramebuffer();
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
@@ -125,6 +128,8 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
                                             std::string("VCT_SH ") + (mSHVoxels ? "1" : "0")};
         mBounceProg = gl::Program("vct.bounce", {{GL_COMPUTE_SHADER, "vct/bounce.comp"}}, defines);
         mTraceProg = gl::Program("vct.trace", {{GL_COMPUTE_SHADER, "vct/trace.comp"}}, defines);
+        mBlock.requireIn(mBounceProg);
+        mBlock.requireIn(mTraceProg);
     }
     if (!any(Cost(changes), Cost::Reallocate)) return;
     mMode = s.mode;
@@ -175,22 +180,25 @@ void VCT::indirect(FrameContext& ctx) {
     ctx.indirectWritten = true;
 }
 
-void VCT::setGridUniforms(const gl::Program& p, const Level& level) const {
-    p.set("uResolution", mResolution);
-    p.set("uGridMin", level.box.min);
-    p.set("uCellSize", level.box.cellSize);
-    p.set("uWrapOffset", mMode == VCTMode::Clipmap ? wrapOf(level.box.origin, mResolution) : glm::ivec3(0));
+vct::VCTParams VCT::gridParams(const Level& level) const {
+    vct::VCTParams p{};
+    p.resolution = mResolution;
+    p.gridMin = glm::vec4(level.box.min, 0.0f);
+    p.cellSize = level.box.cellSize;
+    p.wrapOffset = glm::ivec4(mMode == VCTMode::Clipmap ? wrapOf(level.box.origin, mResolution) : glm::ivec3(0), 0);
+    return p;
 }
 
 void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax) {
     // Clear the region first (the whole grid, or a clipmap slab in its toroidal place).
+    vct::VCTParams p = gridParams(level);
+    p.clipMin = glm::ivec4(clipMin, 0);
+    p.clipMax = glm::ivec4(clipMax, 0);
     mClearProg.use();
-    setGridUniforms(mClearProg, level);
-    mClearProg.set("uClipMin", clipMin);
-    mClearProg.set("uClipMax", clipMax);
-    glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(2, level.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    mBlock.set(p);
+    glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageEmission, level.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     GLuint g = groups(mResolution, 4);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -202,20 +210,19 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     mVoxelizeProg.use();
-    setGridUniforms(mVoxelizeProg, level);
-    mVoxelizeProg.set("uClipMin", clipMin);
-    mVoxelizeProg.set("uClipMax", clipMax);
-    mVoxelizeProg.set("uEmissionScale", 1.0f / mEmissionRange);
-    glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(2, level.emission.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    p.emissionScale = 1.0f / mEmissionRange;
+    glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageEmission, level.emission.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindSampler(shared::kUnitBaseColor, mRepeat.id());
     ctx.scene.draw([&](const Material& m, int) {
-        mVoxelizeProg.set("uBaseColor", m.baseColor);
-        mVoxelizeProg.set("uHasTexture", m.baseColorTexture >= 0 ? 1 : 0);
-        mVoxelizeProg.set("uAlphaCutoff", m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f);
-        mVoxelizeProg.set("uMetallic", m.metallic);
-        mVoxelizeProg.set("uEmissive", m.emissive);
+        vct::VCTParams draw = p;
+        draw.baseColor = m.baseColor;
+        draw.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
+        draw.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
+        draw.metallic = m.metallic;
+        draw.emissive = glm::vec4(m.emissive, 0.0f);
+        mBlock.set(draw);
         if (m.baseColorTexture >= 0) glBindTextureUnit(shared::kUnitBaseColor, ctx.scene.texture(m.baseColorTexture));
     });
     glBindSampler(shared::kUnitBaseColor, 0);
@@ -271,17 +278,18 @@ void VCT::inject(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("vct.inject");
     const auto& lights = ctx.settings.lights;
     mInjectProg.use();
-    mInjectProg.set("uEmissionRange", mEmissionRange);
     for (Level& l : mLevels) {
-        setGridUniforms(mInjectProg, l);
         bindVoxelImages(l, GL_READ_WRITE);
-        glBindImageTexture(2, l.emission.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(vct::kVCTImageEmission, l.emission.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         size_t first = 0;
         do {
             int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
-            mInjectProg.set("uLightFirst", int(first));
-            mInjectProg.set("uLightCount", count);
-            mInjectProg.set("uAccumulate", first > 0 ? 1 : 0);
+            vct::VCTParams p = gridParams(l);
+            p.emissionRange = mEmissionRange;
+            p.lightFirst = int(first);
+            p.lightCount = count;
+            p.accumulate = first > 0 ? 1 : 0;
+            mBlock.set(p);
             for (int i = 0; i < count; ++i) {
                 const ShadowMapView& sm = ctx.shadows[first + size_t(i)];
                 bindBatchShadowMap(i, sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
@@ -297,26 +305,28 @@ void VCT::inject(const FrameContext& ctx) {
 }
 
 void VCT::bindVoxelImages(const Level& l, GLenum exitAccess) const {
-    // The binding points every VCT pass shares: albedo 0, normal 1, the two sides' radiance 3, 4.
-    glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(1, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(3, l.exitFront.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
-    glBindImageTexture(4, l.exitBack.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
+    glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageExitFront, l.exitFront.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitBack, l.exitBack.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
 }
 
 void VCT::resolve(Level& level, bool bounced) {
+    vct::VCTParams p = gridParams(level);
+    p.sh = mSHVoxels ? 1 : 0;
     mResolveProg.use();
-    setGridUniforms(mResolveProg, level);
-    mResolveProg.set("uSH", mSHVoxels ? 1 : 0);
-    glBindImageTexture(0, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(1, level.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(3, (bounced ? level.bouncedFront : level.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
-    glBindImageTexture(4, (bounced ? level.bouncedBack : level.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
-    glBindImageTexture(5, level.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    mBlock.set(p);
+    glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageExitFront, (bounced ? level.bouncedFront : level.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
+                       kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitBack, (bounced ? level.bouncedBack : level.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
+                       kExitFormat);
+    glBindImageTexture(vct::kVCTImageRadiance, level.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (mSHVoxels) {
-        glBindImageTexture(6, mSH[0].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindImageTexture(7, mSH[1].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindImageTexture(2, mSH[2].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(vct::kVCTImageSHR, mSH[0].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(vct::kVCTImageSHG, mSH[1].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(vct::kVCTImageSHB, mSH[2].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
     GLuint g = groups(mResolution, 4);
     glDispatchCompute(g, g, g);
@@ -329,13 +339,15 @@ void VCT::buildMips() {
     // direction's slab in the anisotropic atlas (0 elsewhere).
     auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction, int size,
                      int srcOffset, int dstOffset) {
-        mMipProg.set("uSourceLevel", srcLevel);
-        mMipProg.set("uDestSize", glm::ivec3(size));
-        mMipProg.set("uDirection", direction);
-        mMipProg.set("uSourceOffsetX", srcOffset);
-        mMipProg.set("uDestOffsetX", dstOffset);
-        glBindTextureUnit(0, src.id());
-        glBindImageTexture(0, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        vct::VCTParams p{};
+        p.sourceLevel = srcLevel;
+        p.destSize = glm::ivec4(glm::ivec3(size), 0);
+        p.direction = direction;
+        p.sourceOffsetX = srcOffset;
+        p.destOffsetX = dstOffset;
+        mBlock.set(p);
+        glBindTextureUnit(vct::kVCTUnitMipSource, src.id());
+        glBindImageTexture(vct::kVCTImageMipDest, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         GLuint g = groups(size, 4);
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -367,26 +379,23 @@ void VCT::bindRadiance() const {
     }
 }
 
-void VCT::setTraceUniforms(const gl::Program& p, const VCTSettings& s) const {
+void VCT::setConeParams(vct::VCTParams& p, const VCTSettings& s) const {
     ConeSet set = makeConeSet(s);
-    p.set("uConeCount", int(set.cones.size()));
-    std::vector<glm::vec4> cones;
-    for (const Cone& c : set.cones) cones.emplace_back(c.direction, c.weight);
-    glProgramUniform4fv(p.id(), p.location("uCones[0]"), GLsizei(cones.size()), &cones[0][0]);
-    p.set("uTanHalf", std::tan(0.5f * set.aperture));
-    p.set("uLevelCount", int(mLevels.size()));
+    GI_ASSERT(set.cones.size() <= size_t(vct::kVCTMaxCones), "VCTParams::cones holds kVCTMaxCones cones");
+    p.coneCount = int(set.cones.size());
+    for (size_t i = 0; i < set.cones.size(); ++i) p.cones[i] = glm::vec4(set.cones[i].direction, set.cones[i].weight);
+    p.tanHalf = std::tan(0.5f * set.aperture);
+    p.levelCount = int(mLevels.size());
     for (size_t k = 0; k < mLevels.size(); ++k) {
-        std::string i = "[" + std::to_string(k) + "]";
         const VoxelBox& b = mLevels[k].box;
-        p.set(("uLevelMinCell" + i).c_str(), glm::vec4(b.min, b.cellSize));
-        p.set(("uLevelWrap" + i).c_str(), mMode == VCTMode::Clipmap ? wrapOf(b.origin, mResolution) : glm::ivec3(0));
+        p.levelMinCell[k] = glm::vec4(b.min, b.cellSize);
+        p.levelWrap[k] = glm::ivec4(mMode == VCTMode::Clipmap ? wrapOf(b.origin, mResolution) : glm::ivec3(0), 0);
     }
-    p.set("uMaxLod", float(mMipCount - 1));
-    p.set("uNudge", s.nudge);
-    p.set("uStepMultiplier", s.stepMultiplier);
+    p.maxLod = float(mMipCount - 1);
+    p.nudge = s.nudge;
+    p.stepMultiplier = s.stepMultiplier;
     const VoxelBox& outer = mLevels.back().box;
-    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : outer.extent(mResolution) * shared::kSqrt3;
-    p.set("uMaxDistance", maxDistance);
+    p.maxDistance = s.maxDistance > 0.0f ? s.maxDistance : outer.extent(mResolution) * shared::kSqrt3;
 }
 
 void VCT::bounce(const FrameContext& ctx) {
@@ -408,27 +417,28 @@ void VCT::bounce(const FrameContext& ctx) {
     for (Level& l : mLevels) {
         const GLuint start[4] = {0, 1, 1, 0};
         glNamedBufferSubData(l.occupiedDispatch.id(), 0, 16, start);
-        setGridUniforms(mCompactProg, l);
-        glBindImageTexture(0, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l.occupiedDispatch.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, l.occupiedList.id());
+        mBlock.set(gridParams(l));
+        glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferVoxels, l.occupiedList.id());
         GLuint g = groups(mResolution, 4);
         glDispatchCompute(g, g, g);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     for (int b = 1; b < s.bounceCount; ++b) {
         mBounceProg.use();
-        setTraceUniforms(mBounceProg, s);
-        // Start at least a voxel diagonal out so a voxel does not gather its own light.
-        mBounceProg.set("uNudge", std::max(s.nudge, 1.0f));
         bindRadiance();
         for (Level& l : mLevels) {
-            setGridUniforms(mBounceProg, l);
+            vct::VCTParams p = gridParams(l);
+            setConeParams(p, s);
+            // Start at least a voxel diagonal out so a voxel does not gather its own light.
+            p.nudge = std::max(s.nudge, 1.0f);
+            mBlock.set(p);
             bindVoxelImages(l, GL_READ_ONLY);
-            glBindImageTexture(5, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
-            glBindImageTexture(6, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, l.occupiedDispatch.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, l.occupiedList.id());
+            glBindImageTexture(vct::kVCTImageBouncedFront, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
+            glBindImageTexture(vct::kVCTImageBouncedBack, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferVoxels, l.occupiedList.id());
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, l.occupiedDispatch.id());
             glDispatchComputeIndirect(0);
         }
@@ -443,18 +453,16 @@ void VCT::bounce(const FrameContext& ctx) {
 void VCT::trace(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("vct.trace");
     const VCTSettings& s = ctx.settings.vct;
-    mTraceProg.use();
-    setTraceUniforms(mTraceProg, s);
-    setGridUniforms(mTraceProg, mLevels[0]);
-    float maxDistance = s.maxDistance > 0.0f ? s.maxDistance : mLevels.back().box.extent(mResolution) * shared::kSqrt3;
-    mTraceProg.set("uOcclusionDistance", s.vaoDistance > 0.0f ? s.vaoDistance : maxDistance);
-    mTraceProg.set("uVAO", s.vao ? 1 : 0);
-    mTraceProg.set("uVAOStrength", s.vaoStrength);
-    mTraceProg.set("uIntensity", s.intensity);
-    mTraceProg.set("uSpecularCone", s.specularCone ? 1 : 0);
-    mTraceProg.set("uSpecularAperture", glm::radians(glm::vec2(s.specularApertureMin, s.specularApertureMax)));
-    mTraceProg.set("uInvViewProj", ctx.invViewProj);
-    mTraceProg.set("uCameraPos", ctx.settings.camera.eye);
+    vct::VCTParams p = gridParams(mLevels[0]);
+    setConeParams(p, s);
+    p.occlusionDistance = s.vaoDistance > 0.0f ? s.vaoDistance : p.maxDistance;
+    p.vao = s.vao ? 1 : 0;
+    p.vaoStrength = s.vaoStrength;
+    p.intensity = s.intensity;
+    p.specularCone = s.specularCone ? 1 : 0;
+    p.specularAperture = glm::vec4(glm::radians(glm::vec2(s.specularApertureMin, s.specularApertureMax)), 0.0f, 0.0f);
+    p.invViewProj = ctx.invViewProj;
+    p.cameraPos = glm::vec4(ctx.settings.camera.eye, 0.0f);
     glm::ivec2 full(ctx.width, ctx.height);
     glm::ivec2 low = glm::max(glm::ivec2(glm::ceil(glm::vec2(full) * s.traceScale)), glm::ivec2(1));
     bool scaled = low != full;
@@ -463,30 +471,33 @@ void VCT::trace(const FrameContext& ctx) {
         mLowSpecular = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
     }
     glm::vec2 toFull = glm::vec2(full) / glm::vec2(low);
-    mTraceProg.set("uSize", low);
-    mTraceProg.set("uFullSize", full);
-    mTraceProg.set("uToFull", toFull);
+    p.imageSize = glm::ivec4(low, full);
+    p.toFull = glm::vec4(toFull, 0.0f, 0.0f);
+    mTraceProg.use();
+    mBlock.set(p);
     bindRadiance();
     glBindTextureUnit(shared::kUnitNormal, ctx.normal);
     glBindTextureUnit(shared::kUnitMaterial, ctx.material);
     glBindTextureUnit(shared::kUnitDepth, ctx.depth);
-    glBindImageTexture(0, scaled ? mLowIndirect.id() : ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, scaled ? mLowSpecular.id() : ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(vct::kVCTImageIndirect, scaled ? mLowIndirect.id() : ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(vct::kVCTImageSpecular, scaled ? mLowSpecular.id() : ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                       GL_RGBA16F);
     glDispatchCompute(groups(low.x, 8), groups(low.y, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
     if (!scaled) return;
     auto up = ctx.timer.scope("vct.upsample");
+    vct::VCTParams u{};
+    u.imageSize = glm::ivec4(low, full);
+    u.toFull = glm::vec4(toFull, 0.0f, 0.0f);
+    u.nearPlane = ctx.settings.camera.near;
+    u.farPlane = ctx.settings.camera.far;
     mUpsampleProg.use();
-    mUpsampleProg.set("uFullSize", full);
-    mUpsampleProg.set("uLowSize", low);
-    mUpsampleProg.set("uToFull", toFull);
-    mUpsampleProg.set("uNear", ctx.settings.camera.near);
-    mUpsampleProg.set("uFar", ctx.settings.camera.far);
-    glBindTextureUnit(0, mLowIndirect.id());
-    glBindTextureUnit(3, mLowSpecular.id());
-    glBindImageTexture(0, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    mBlock.set(u);
+    glBindTextureUnit(vct::kVCTUnitLowIndirect, mLowIndirect.id());
+    glBindTextureUnit(vct::kVCTUnitLowSpecular, mLowSpecular.id());
+    glBindImageTexture(vct::kVCTImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(vct::kVCTImageSpecular, ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups(full.x, 8), groups(full.y, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

@@ -57,8 +57,10 @@
 
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
+#include "gi/gl/uniform_block.h"
 #include "gi/render/pass.h"
 #include "gi/vct/cone_set.h"
+#include "vct/vct_shared.h"
 
 #include <glm/glm.hpp>
 
@@ -126,6 +128,7 @@ private:
     gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
     gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
     gl::Program mCompactProg;
+    gl::UniformBlock<vct::VCTParams> mBlock;  // every pass reads it
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
     std::array<gl::Texture, 3> mSH;
@@ -141,8 +144,10 @@ private:
     float mEmissionRange = 1.0f;
 
     void allocate(const FrameSettings& fs, uint8_t changes);
-    void setGridUniforms(const gl::Program& p, const Level& level) const;
-    void setTraceUniforms(const gl::Program& p, const VCTSettings& s) const;
+    // A fresh VCTParams holding the grid fields of `level`.
+    vct::VCTParams gridParams(const Level& level) const;
+    // The cone set and march fields of bounce and trace.
+    void setConeParams(vct::VCTParams& p, const VCTSettings& s) const;
     void voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax);
     void updateGrids(const FrameContext& ctx);
     void inject(const FrameContext& ctx);

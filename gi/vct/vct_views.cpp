@@ -75,7 +75,9 @@ int finestLevelHolding(const std::vector<VoxelGridView>& grids, const glm::vec3&
     return std::max(int(grids.size()) - 1, 0);
 }
 
-VoxelView::VoxelView() : mProgram(gl::fullscreenProgram("vct.voxelView", "vct/voxel_view.frag")) {
+VoxelView::VoxelView()
+    : mProgram(gl::fullscreenProgram("vct.voxelView", "vct/voxel_view.frag")), mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
+    mBlock.requireIn(mProgram);
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mVAO = gl::VertexArray(vao);
@@ -102,25 +104,28 @@ void VoxelView::render(const std::vector<VoxelGridView>& grids, const VoxelViewP
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
         glBindVertexArray(mVAO.id());
+        vct::VCTParams p{};
+        p.invViewProj = glm::inverse(params.viewProj);
+        p.gridMin = glm::vec4(g.box.min, 0.0f);
+        p.cellSize = g.box.cellSize;
+        p.resolution = g.resolution;
+        p.wrapOffset = glm::ivec4(g.wrap, 0);
+        p.viewMip = mip;
+        p.viewSource = int(params.source);
+        p.exposureScale = std::exp2(params.exposure);
+        p.opacityThreshold = params.opacityThreshold;
+        p.edges = params.edges ? 1 : 0;
+        p.background = glm::vec4(params.background, 0.0f);
         mProgram.use();
-        mProgram.set("uInvViewProj", glm::inverse(params.viewProj));
-        mProgram.set("uGridMin", g.box.min);
-        mProgram.set("uCellSize", g.box.cellSize);
-        mProgram.set("uResolution", g.resolution);
-        mProgram.set("uWrap", g.wrap);
-        mProgram.set("uMip", mip);
-        mProgram.set("uSource", int(params.source));
-        mProgram.set("uExposureScale", std::exp2(params.exposure));
-        mProgram.set("uOpacityThreshold", params.opacityThreshold);
-        mProgram.set("uEdges", params.edges ? 1 : 0);
-        mProgram.set("uBackground", params.background);
+        mBlock.set(p);
         // texelFetch only, but an r32ui volume under a linear filter is incomplete and reads 0.
-        glBindTextureUnit(0, g.albedo);
-        glBindTextureUnit(1, packed);
-        glBindTextureUnit(2, g.radiance);
-        for (GLuint u = 0; u < 3; ++u) glBindSampler(u, mNearest.id());
+        glBindTextureUnit(vct::kVCTUnitViewOccupancy, g.albedo);
+        glBindTextureUnit(vct::kVCTUnitViewPacked, packed);
+        glBindTextureUnit(vct::kVCTUnitViewRadiance, g.radiance);
+        const GLuint units[3] = {vct::kVCTUnitViewOccupancy, vct::kVCTUnitViewPacked, vct::kVCTUnitViewRadiance};
+        for (GLuint u : units) glBindSampler(u, mNearest.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        for (GLuint u = 0; u < 3; ++u) {
+        for (GLuint u : units) {
             glBindSampler(u, 0);
             glBindTextureUnit(u, 0);
         }

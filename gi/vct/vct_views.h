@@ -33,7 +33,7 @@
 
 namespace gi {
 
-// What a voxel view shows. The values are uSource in shaders/vct/voxel_view.frag.
+// What a voxel view shows. The values are VCTParams::viewSource (shaders/vct/vct_shared.h).
 enum class VoxelViewSource { Albedo = 0, Normal = 1, Emission = 2, Radiance = 3 };
 template <>
 struct EnumNames<VoxelViewSource> {
@@ -90,6 +90,7 @@ public:
 
 private:
     gl::Program mProgram;
+    gl::UniformBlock<vct::VCTParams> mBlock;  // VCT's block, with the view's fields
     gl::VertexArray mVAO;
     gl::Sampler mNearest;  // integer volumes are incomplete under the default linear filters
 };

@@ -6,26 +6,21 @@
 #include "vct/trace.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
-layout(std430, binding = 1) readonly buffer Voxels { uint voxels[]; };  // compact.comp's list
-layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
-layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
-layout(binding = 3, r11f_g11f_b10f) uniform readonly image3D uDirectFront;  // inject.comp's result
-layout(binding = 4, r11f_g11f_b10f) uniform readonly image3D uDirectBack;
-layout(binding = 5, r11f_g11f_b10f) uniform writeonly image3D uExitFront;   // what resolve.comp reads next
-layout(binding = 6, r11f_g11f_b10f) uniform writeonly image3D uExitBack;
-
-uniform int uConeCount;
-uniform vec4 uCones[kVCTMaxCones];
-uniform float uTanHalf;
-uniform float uMaxDistance;
+layout(std430, binding = kVCTBufferDispatch) readonly buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
+layout(std430, binding = kVCTBufferVoxels) readonly buffer Voxels { uint voxels[]; };  // compact.comp's list
+layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
+layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
+layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform readonly image3D uDirectFront;  // inject.comp's result
+layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform readonly image3D uDirectBack;
+layout(binding = kVCTImageBouncedFront, r11f_g11f_b10f) uniform writeonly image3D uExitFront;  // what resolve.comp reads next
+layout(binding = kVCTImageBouncedBack, r11f_g11f_b10f) uniform writeonly image3D uExitBack;
 
 vec3 hemisphere(vec3 p, vec3 n) {
     mat3 frame = tangentFrame(n);
     vec3 e = vec3(0.0);
-    for (int i = 0; i < uConeCount; ++i) {
+    for (int i = 0; i < uVCT.coneCount; ++i) {
         float occlusion;
-        e += uCones[i].w * traceCone(p, n, frame * uCones[i].xyz, uTanHalf, uMaxDistance, 0.0, occlusion).rgb;
+        e += uVCT.cones[i].w * traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, 0.0, occlusion).rgb;
     }
     return e;
 }

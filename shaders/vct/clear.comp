@@ -3,16 +3,13 @@
 #include "vct/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0, r32ui) uniform writeonly uimage3D uAlbedoVox;
-layout(binding = 1, r32ui) uniform writeonly uimage3D uNormalVox;
-layout(binding = 2, r32ui) uniform writeonly uimage3D uEmissionVox;
-
-uniform ivec3 uClipMin;
-uniform ivec3 uClipMax;
+layout(binding = kVCTImageAlbedo, r32ui) uniform writeonly uimage3D uAlbedoVox;
+layout(binding = kVCTImageNormal, r32ui) uniform writeonly uimage3D uNormalVox;
+layout(binding = kVCTImageEmission, r32ui) uniform writeonly uimage3D uEmissionVox;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (!insideGrid(v) || any(lessThan(v, uClipMin)) || any(greaterThanEqual(v, uClipMax))) return;
+    if (!insideGrid(v) || any(lessThan(v, uVCT.clipMin.xyz)) || any(greaterThanEqual(v, uVCT.clipMax.xyz))) return;
     ivec3 t = texelOf(v);
     imageStore(uAlbedoVox, t, uvec4(0u));
     imageStore(uNormalVox, t, uvec4(0u));

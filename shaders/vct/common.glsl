@@ -1,16 +1,11 @@
-// Shared by the VCT compute passes: the voxel grid's uniforms and the packed RGBA8 volumes.
+// Shared by the VCT compute passes: the voxel grid (uVCT's grid fields) and the packed RGBA8 volumes.
 #include "common/shared.h"
 #include "common/sh.h"
 #include "vct/vct_shared.h"
 
-uniform int uResolution;    // voxels per side
-uniform vec3 uGridMin;      // world position of the grid's corner (logical voxel 0)
-uniform float uCellSize;    // world size of a voxel
-uniform ivec3 uWrapOffset;  // clipmap: texel = (voxel + offset) mod resolution
-
-bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uResolution))); }
-ivec3 texelOf(ivec3 voxel) { return (voxel + uWrapOffset) % uResolution; }
-vec3 voxelCentre(ivec3 voxel) { return uGridMin + (vec3(voxel) + 0.5) * uCellSize; }
+bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uVCT.resolution))); }
+ivec3 texelOf(ivec3 voxel) { return (voxel + uVCT.wrapOffset.xyz) % uVCT.resolution; }
+vec3 voxelCentre(ivec3 voxel) { return uVCT.gridMin.xyz + (vec3(voxel) + 0.5) * uVCT.cellSize; }
 
 // rgb of an RGBA8-in-r32ui running average, and whether anything was written there.
 vec4 unpackVoxel(uint v) { return unpackUnorm4x8(v); }

@@ -5,9 +5,9 @@
 #include "vct/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
-layout(std430, binding = 0) buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
-layout(std430, binding = 1) writeonly buffer Voxels { uint voxels[]; };
+layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
+layout(std430, binding = kVCTBufferDispatch) buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
+layout(std430, binding = kVCTBufferVoxels) writeonly buffer Voxels { uint voxels[]; };
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);

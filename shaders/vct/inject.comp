@@ -10,18 +10,13 @@
 #include "common/light.h"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
-layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
-layout(binding = 2, r32ui) uniform readonly uimage3D uEmissionVox;
-layout(binding = 3, r11f_g11f_b10f) uniform image3D uExitFront;
-layout(binding = 4, r11f_g11f_b10f) uniform image3D uExitBack;
+layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
+layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
+layout(binding = kVCTImageEmission, r32ui) uniform readonly uimage3D uEmissionVox;
+layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform image3D uExitFront;
+layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform image3D uExitBack;
 layout(binding = kVCTUnitShadow2D) uniform sampler2DShadow uShadow2D[kVCTMaxLights];
 layout(binding = kVCTUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVCTMaxLights];
-
-uniform int uLightFirst;  // the batch: uLights[uLightFirst + i], its shadow maps on unit + i
-uniform int uLightCount;
-uniform bool uAccumulate;
-uniform float uEmissionRange;  // the scene's largest emission (voxels store emission / range)
 
 float visibility(int i, GPULight l, vec3 p) {
     if (l.info.y == 0) return 1.0;
@@ -47,8 +42,8 @@ void main() {
         float len = length(n);
         n = len > 1e-3 ? n / len : vec3(0.0, 1.0, 0.0);
         vec3 p = voxelCentre(v);
-        for (int i = 0; i < uLightCount; ++i) {
-            GPULight l = uLights[uLightFirst + i];
+        for (int i = 0; i < uVCT.lightCount; ++i) {
+            GPULight l = uLights[uVCT.lightFirst + i];
             vec3 L;
             vec3 E = l.color.rgb;
             if (l.info.x == kLightDirectional) {
@@ -62,7 +57,7 @@ void main() {
             float c = dot(n, L);
             if (all(equal(E, vec3(0.0))) || (len > 1e-3 && abs(c) < 1e-4)) continue;
             vec3 side = c >= 0.0 ? n : -n;
-            float vis = visibility(i, l, p + L * uCellSize + side * (0.5 * uCellSize));
+            float vis = visibility(i, l, p + L * uVCT.cellSize + side * (0.5 * uVCT.cellSize));
             // A voxel whose normals cancelled (two faces of a thin slab) takes the light unweighted.
             vec3 e = E * vis * (len > 1e-3 ? abs(c) : 1.0);
             if (c >= 0.0) front += e;
@@ -72,11 +67,11 @@ void main() {
     vec3 albedo = unpackVoxel(packedAlbedo).rgb / kPi;
     front *= albedo;
     back *= albedo;
-    if (uAccumulate) {
+    if (uVCT.accumulate != 0) {
         front += imageLoad(uExitFront, t).rgb;
         back += imageLoad(uExitBack, t).rgb;
     } else if (occupied(packedAlbedo)) {
-        vec3 emission = unpackVoxel(imageLoad(uEmissionVox, t).r).rgb * uEmissionRange;
+        vec3 emission = unpackVoxel(imageLoad(uEmissionVox, t).r).rgb * uVCT.emissionRange;
         front += emission;
         back += emission;
     }

@@ -6,16 +6,15 @@
 #include "vct/common.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
-layout(binding = 0, r32ui) uniform readonly uimage3D uAlbedoVox;
-layout(binding = 1, r32ui) uniform readonly uimage3D uNormalVox;
-layout(binding = 3, r11f_g11f_b10f) uniform readonly image3D uExitFront;
-layout(binding = 4, r11f_g11f_b10f) uniform readonly image3D uExitBack;
-layout(binding = 5, rgba16f) uniform writeonly image3D uRadiance;
-layout(binding = 6, rgba16f) uniform writeonly image3D uSHR;
-layout(binding = 7, rgba16f) uniform writeonly image3D uSHG;
-layout(binding = 2, rgba16f) uniform writeonly image3D uSHB;
-
-uniform bool uSH;
+// After a bounce the host binds the bounced volumes at the exit bindings.
+layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
+layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
+layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform readonly image3D uExitFront;
+layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform readonly image3D uExitBack;
+layout(binding = kVCTImageRadiance, rgba16f) uniform writeonly image3D uRadiance;
+layout(binding = kVCTImageSHR, rgba16f) uniform writeonly image3D uSHR;
+layout(binding = kVCTImageSHG, rgba16f) uniform writeonly image3D uSHG;
+layout(binding = kVCTImageSHB, rgba16f) uniform writeonly image3D uSHB;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -31,7 +30,7 @@ void main() {
         alpha = 1.0;
     }
     imageStore(uRadiance, t, vec4(front + back, alpha));
-    if (uSH) {
+    if (uVCT.sh != 0) {
         vec4 hf = shHemisphere(n), hb = shHemisphere(-n);
         imageStore(uSHR, t, front.r * hf + back.r * hb);
         imageStore(uSHG, t, front.g * hf + back.g * hb);

@@ -10,54 +10,38 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormal;
 layout(binding = kUnitMaterial) uniform sampler2D uMaterial;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
-layout(binding = 0, rgba16f) uniform writeonly image2D uIndirect;
-layout(binding = 1, rgba16f) uniform writeonly image2D uSpecular;
-
-uniform mat4 uInvViewProj;
-uniform vec3 uCameraPos;
-uniform ivec2 uSize;        // the traced image (the G-buffer's size times traceScale)
-uniform ivec2 uFullSize;    // the G-buffer's size
-uniform vec2 uToFull;       // full-resolution pixels per traced pixel
-uniform int uConeCount;
-uniform vec4 uCones[kVCTMaxCones];  // xyz: tangent-space axis, w: normalised weight
-uniform float uTanHalf;             // tan of half the diffuse aperture
-uniform float uMaxDistance;
-uniform float uOcclusionDistance;
-uniform bool uVAO;
-uniform float uVAOStrength;
-uniform float uIntensity;
-uniform bool uSpecularCone;
-uniform vec2 uSpecularAperture;     // radians at roughness 0 and 1
+layout(binding = kVCTImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
+layout(binding = kVCTImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
 
 void main() {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(q, uSize))) return;
+    if (any(greaterThanEqual(q, uVCT.imageSize.xy))) return;
     // The traced pixel stands for the full-resolution pixel under its centre (upsample.comp reads the same).
-    ivec2 px = min(ivec2((vec2(q) + 0.5) * uToFull), uFullSize - 1);
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * uVCT.toFull.xy), uVCT.imageSize.zw - 1);
     float depth = texelFetch(uDepth, px, 0).r;
     vec3 indirect = vec3(0.0), specular = vec3(0.0);
     if (depth < 1.0) {
-        vec2 uv = (vec2(px) + 0.5) / vec2(uFullSize);
-        vec4 w = uInvViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        vec2 uv = (vec2(px) + 0.5) / vec2(uVCT.imageSize.zw);
+        vec4 w = uVCT.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         vec3 p = w.xyz / w.w;
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
         mat3 frame = tangentFrame(n);
         float visibility = 0.0;
-        for (int i = 0; i < uConeCount; ++i) {
+        for (int i = 0; i < uVCT.coneCount; ++i) {
             float occlusion;
-            vec4 c = traceCone(p, n, frame * uCones[i].xyz, uTanHalf, uMaxDistance, uOcclusionDistance, occlusion);
-            indirect += uCones[i].w * c.rgb;
-            visibility += uCones[i].w * (1.0 - occlusion);
+            vec4 c = traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, uVCT.occlusionDistance, occlusion);
+            indirect += uVCT.cones[i].w * c.rgb;
+            visibility += uVCT.cones[i].w * (1.0 - occlusion);
         }
-        if (uVAO) indirect *= mix(1.0, visibility, uVAOStrength);
-        indirect *= uIntensity;
-        if (uSpecularCone) {
-            vec3 v = normalize(uCameraPos - p);
+        if (uVCT.vao != 0) indirect *= mix(1.0, visibility, uVCT.vaoStrength);
+        indirect *= uVCT.intensity;
+        if (uVCT.specularCone != 0) {
+            vec3 v = normalize(uVCT.cameraPos.xyz - p);
             vec3 r = reflect(-v, n);
             float roughness = texelFetch(uMaterial, px, 0).r;
-            float aperture = mix(uSpecularAperture.x, uSpecularAperture.y, roughness);
+            float aperture = mix(uVCT.specularAperture.x, uVCT.specularAperture.y, roughness);
             float occlusion;
-            specular = uIntensity * traceCone(p, n, r, tan(0.5 * aperture), uMaxDistance, 0.0, occlusion).rgb;
+            specular = uVCT.intensity * traceCone(p, n, r, tan(0.5 * aperture), uVCT.maxDistance, 0.0, occlusion).rgb;
         }
     }
     imageStore(uIndirect, q, vec4(indirect, 1.0));

@@ -32,15 +32,9 @@ layout(binding = kVCTUnitSH + 1) uniform sampler3D uSHG;
 layout(binding = kVCTUnitSH + 2) uniform sampler3D uSHB;
 #endif
 
-uniform int uLevelCount;
-uniform vec4 uLevelMinCell[kVCTMaxLevels];  // xyz: grid minimum, w: voxel size
-uniform ivec3 uLevelWrap[kVCTMaxLevels];    // toroidal offsets (clipmap), else 0
-uniform float uMaxLod;                      // mip levels per level - 1
-uniform float uNudge;
-uniform float uStepMultiplier;
-
 vec3 levelCoord(int k, vec3 p) {
-    return (p - uLevelMinCell[k].xyz) / (uLevelMinCell[k].w * float(uResolution)) + vec3(uLevelWrap[k]) / float(uResolution);
+    return (p - uVCT.levelMinCell[k].xyz) / (uVCT.levelMinCell[k].w * float(uVCT.resolution)) +
+           vec3(uVCT.levelWrap[k].xyz) / float(uVCT.resolution);
 }
 
 vec4 levelRadiance(int k, vec3 tc, float lod) {
@@ -59,7 +53,7 @@ vec4 levelRadiance(int k, vec3 tc, float lod) {
 // the neighbouring direction, and the fade to the zero border that y and z get from the sampler
 // applied to x by hand (a point u texels inside a face keeps 0.5 + u of the face texel).
 vec4 sampleAnisoMip(vec3 tc, float m, vec3 slab, vec3 w) {
-    float size = float(uResolution / 2) * exp2(-m);
+    float size = float(uVCT.resolution / 2) * exp2(-m);
     float halfTexel = 0.5 / size;
     float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
     float fade = clamp(min(tc.x, 1.0 - tc.x) * size + 0.5, 0.0, 1.0);
@@ -83,7 +77,7 @@ vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
 // Premultiplied radiance towards the apex and opacity of level k at p, for a cone marching along dir.
 vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
     vec3 tc = levelCoord(k, p);
-    lod = clamp(lod, 0.0, uMaxLod);
+    lod = clamp(lod, 0.0, uVCT.maxLod);
 #if VCT_SH
     vec4 b = shBasis(-dir);
     float a = levelRadiance(0, tc, lod).a;
@@ -100,18 +94,18 @@ vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
 // The sample of the finest level that holds p, blended towards the next level over the outer
 // tenth of its extent. False outside every level.
 bool sampleVoxels(vec3 p, float diameter, vec3 dir, out vec4 s) {
-    for (int k = 0; k < uLevelCount; ++k) {
-        float extent = uLevelMinCell[k].w * float(uResolution);
-        vec3 d = abs(p - (uLevelMinCell[k].xyz + 0.5 * extent)) - 0.5 * extent;
+    for (int k = 0; k < uVCT.levelCount; ++k) {
+        float extent = uVCT.levelMinCell[k].w * float(uVCT.resolution);
+        vec3 d = abs(p - (uVCT.levelMinCell[k].xyz + 0.5 * extent)) - 0.5 * extent;
         float m = max(d.x, max(d.y, d.z));
         // The outermost level also takes samples centred outside it whose footprint reaches in:
         // with steps of a diameter, the sample that would reach a far wall is often centred past it.
-        if (m > (k + 1 == uLevelCount ? 0.5 * diameter : 0.0)) continue;
-        s = sampleLevel(k, p, log2(max(diameter / uLevelMinCell[k].w, 1.0)), dir);
+        if (m > (k + 1 == uVCT.levelCount ? 0.5 * diameter : 0.0)) continue;
+        s = sampleLevel(k, p, log2(max(diameter / uVCT.levelMinCell[k].w, 1.0)), dir);
         float band = kVCTLevelBlend * extent;
         float e = clamp((m + band) / band, 0.0, 1.0);
-        if (e > 0.0 && k + 1 < uLevelCount)
-            s = mix(s, sampleLevel(k + 1, p, log2(max(diameter / uLevelMinCell[k + 1].w, 1.0)), dir), e);
+        if (e > 0.0 && k + 1 < uVCT.levelCount)
+            s = mix(s, sampleLevel(k + 1, p, log2(max(diameter / uVCT.levelMinCell[k + 1].w, 1.0)), dir), e);
         return true;
     }
     s = vec4(0.0);
@@ -121,21 +115,21 @@ bool sampleVoxels(vec3 p, float diameter, vec3 dir, out vec4 s) {
 // Marches one cone; `occlusion` receives the opacity gathered within occlusionDistance.
 vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, float occlusionDistance,
                out float occlusion) {
-    float voxel = uLevelMinCell[0].w;
-    float t = vctConeStart(uNudge, voxel, dot(n, dir));
+    float voxel = uVCT.levelMinCell[0].w;
+    float t = vctConeStart(uVCT.nudge, voxel, dot(n, dir));
     vec4 acc = vec4(0.0);
     occlusion = 0.0;
     for (int i = 0; i < kVCTMaxConeSteps && t < maxDistance && acc.a < kVCTOpaque; ++i) {
         float diameter = max(2.0 * tanHalf * t, voxel);
         vec4 s;
         if (!sampleVoxels(apex + dir * t, diameter, dir, s)) break;
-        if (uStepMultiplier != 1.0 && s.a > 0.0) {
-            float a = 1.0 - pow(max(1.0 - s.a, 0.0), uStepMultiplier);
+        if (uVCT.stepMultiplier != 1.0 && s.a > 0.0) {
+            float a = 1.0 - pow(max(1.0 - s.a, 0.0), uVCT.stepMultiplier);
             s = vec4(s.rgb * (a / s.a), a);
         }
         acc += (1.0 - acc.a) * s;
         if (t < occlusionDistance) occlusion = acc.a;
-        t += uStepMultiplier * diameter;
+        t += uVCT.stepMultiplier * diameter;
     }
     return acc;
 }

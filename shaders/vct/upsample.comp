@@ -3,32 +3,26 @@
 // matches its own: relative view depth (exp(-|dz| / (z * depthTolerance))) and normal
 // (max(n . n_q, 0)^8). Where no neighbour matches (thin objects, silhouettes) the best match
 // alone is used. The traced pixel q stands for the full pixel under its centre, as in trace.comp.
-#include "common/shared.h"
+#include "vct/vct_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormal;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
-layout(binding = 0) uniform sampler2D uLowIndirect;
-layout(binding = 3) uniform sampler2D uLowSpecular;
-layout(binding = 0, rgba16f) uniform writeonly image2D uIndirect;
-layout(binding = 1, rgba16f) uniform writeonly image2D uSpecular;
-
-uniform ivec2 uFullSize;
-uniform ivec2 uLowSize;
-uniform vec2 uToFull;   // full pixels per traced pixel
-uniform float uNear;
-uniform float uFar;
+layout(binding = kVCTUnitLowIndirect) uniform sampler2D uLowIndirect;
+layout(binding = kVCTUnitLowSpecular) uniform sampler2D uLowSpecular;
+layout(binding = kVCTImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
+layout(binding = kVCTImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
 
 const float kDepthTolerance = 0.05;
 
 float viewDepth(float d) {
     float z = d * 2.0 - 1.0;
-    return 2.0 * uNear * uFar / (uFar + uNear - z * (uFar - uNear));
+    return 2.0 * uVCT.nearPlane * uVCT.farPlane / (uVCT.farPlane + uVCT.nearPlane - z * (uVCT.farPlane - uVCT.nearPlane));
 }
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(px, uFullSize))) return;
+    if (any(greaterThanEqual(px, uVCT.imageSize.zw))) return;
     float d = texelFetch(uDepth, px, 0).r;
     if (d >= 1.0) {
         imageStore(uIndirect, px, vec4(0.0, 0.0, 0.0, 1.0));
@@ -37,7 +31,7 @@ void main() {
     }
     float z = viewDepth(d);
     vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
-    vec2 f = (vec2(px) + 0.5) / uToFull - 0.5;
+    vec2 f = (vec2(px) + 0.5) / uVCT.toFull.xy - 0.5;
     ivec2 base = ivec2(floor(f));
     vec2 t = f - vec2(base);
     vec3 indirect = vec3(0.0), specular = vec3(0.0);
@@ -45,8 +39,8 @@ void main() {
     vec3 bestIndirect = vec3(0.0), bestSpecular = vec3(0.0);
     for (int i = 0; i < 4; ++i) {
         ivec2 o = ivec2(i & 1, i >> 1);
-        ivec2 q = clamp(base + o, ivec2(0), uLowSize - 1);
-        ivec2 qp = min(ivec2((vec2(q) + 0.5) * uToFull), uFullSize - 1);
+        ivec2 q = clamp(base + o, ivec2(0), uVCT.imageSize.xy - 1);
+        ivec2 qp = min(ivec2((vec2(q) + 0.5) * uVCT.toFull.xy), uVCT.imageSize.zw - 1);
         float dq = texelFetch(uDepth, qp, 0).r;
         if (dq >= 1.0) continue;
         float match = exp(-abs(viewDepth(dq) - z) / (z * kDepthTolerance)) *

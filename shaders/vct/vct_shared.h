@@ -1,10 +1,24 @@
-// Constants shared by the VCT host code (gi/vct) and its shaders: texture units, image bindings,
-// limits. C++ includes it as "vct/vct_shared.h", GLSL through the #include expander.
-#include "common/shared.h"
+// Constants shared by the VCT host code (gi/vct) and its shaders: texture units, image and
+// buffer bindings, limits, and the parameters of every VCT pass. C++ includes it as
+// "vct/vct_shared.h", GLSL through the #include expander.
+//
+// One uniform block, VCTBlock, for all the passes (as envmap/envmap_shared.h explains): VCTParams
+// is the union of their fields, grouped by the passes that read them, and each pass uploads the
+// whole struct, built afresh. Its layout does not depend on the VCT_LEVELS, VCT_ANISO and VCT_SH
+// variants: the per-level arrays have kVCTMaxLevels entries in every one. Layout as in
+// ssao/ssao_shared.h: mat4, vec4, ivec4 and scalars in groups of four, so std140 and C++ agree.
 #ifdef __cplusplus
 #pragma once
+#include <glm/glm.hpp>
+#include <cstddef>
+#endif
+#include "common/shared.h"
+#ifdef __cplusplus
 namespace gi::vct {
 using namespace gi::shared;
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
 #endif
 
 GI_CONST int kVCTMaxCones = 32;        // diffuse cones per set (gi/vct/cone_set.h kMaxCones)
@@ -18,6 +32,36 @@ GI_CONST int kVCTUnitAniso = 16;       // the six directional volumes +X -X +Y -
 GI_CONST int kVCTUnitSH = 22;          // R, G, B SH coefficient volumes (22..24)
 GI_CONST int kVCTUnitShadow2D = 9;     // inject: 2D shadow maps, one per light of the batch (9..12)
 GI_CONST int kVCTUnitShadowCube = 13;  // inject: cube shadow maps (13..16)
+GI_CONST int kVCTUnitMipSource = 0;    // mip: the volume read
+GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
+GI_CONST int kVCTUnitLowSpecular = 3;
+GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
+GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo, normal or emission)
+GI_CONST int kVCTUnitViewRadiance = 2;   // premultiplied radiance + opacity, with mips
+
+// Image bindings. The voxel volumes keep one binding in every pass that reads or writes them;
+// the volumes a pass writes besides take the bindings that pass leaves free.
+GI_CONST int kVCTImageAlbedo = 0;      // r32ui running averages (clear, voxelize, inject, resolve, compact, bounce)
+GI_CONST int kVCTImageNormal = 1;
+GI_CONST int kVCTImageEmission = 2;
+GI_CONST int kVCTImageExitFront = 3;   // radiance each side leaves (inject writes, resolve and bounce read)
+GI_CONST int kVCTImageExitBack = 4;
+GI_CONST int kVCTImageRadiance = 5;    // resolve: the traced radiance volume
+GI_CONST int kVCTImageSHR = 6;         // resolve: the SH volumes; B takes the emission's binding, unused there
+GI_CONST int kVCTImageSHG = 7;
+GI_CONST int kVCTImageSHB = 2;
+GI_CONST int kVCTImageBouncedFront = 5;  // bounce: direct plus gathered light, which resolve reads next
+GI_CONST int kVCTImageBouncedBack = 6;
+GI_CONST int kVCTImageMipDest = 0;     // mip: the level written
+GI_CONST int kVCTImageIndirect = 0;    // trace (at traceScale) and upsample (full size): diffuse
+GI_CONST int kVCTImageSpecular = 1;    // and specular indirect light
+
+// Shader storage bindings of compact.comp's occupied-voxel list, which bounce.comp reads.
+GI_CONST int kVCTBufferDispatch = 0;   // indirect dispatch arguments and the entry count
+GI_CONST int kVCTBufferVoxels = 1;     // the entries
+
+// Uniform-buffer binding of VCTBlock.
+GI_CONST int kVCTBlockBinding = 0;
 
 // The cone march (trace.glsl; the editor's cone glyphs start where it starts).
 GI_CONST float kVCTMinStartCosine = 0.25;  // n.w clamp of the start offset: grazing cones would start far away
@@ -34,6 +78,80 @@ GI_FUNC float vctConeStart(float nudge, float voxel, float nDotDir) {
 // Encodings of the voxel volumes (r32ui holding RGBA8: rgb = running average, a = sample count).
 GI_CONST float kVCTMaxCount = 255.0;
 
+struct VCTParams {
+    // the grid (level) a pass works on: clear, voxelize, inject, resolve, compact, bounce, trace
+    vec4 gridMin;        // xyz: world position of the grid's corner (logical voxel 0), w unused
+    ivec4 wrapOffset;    // xyz: clipmap texel = (voxel + offset) mod resolution, else 0; w unused
+    ivec4 clipMin;       // clear, voxelize: xyz: voxels outside [clipMin, clipMax) are not written
+    ivec4 clipMax;
+    int resolution;      // voxels per side
+    float cellSize;      // world size of a voxel
+    float emissionScale;  // voxelize: 1 / the scene's largest emission component
+    float emissionRange;  // inject: the scene's largest emission (voxels store emission / range)
+    // voxelize: the material drawn
+    vec4 baseColor;
+    vec4 emissive;       // xyz, w unused
+    int hasTexture;
+    float alphaCutoff;   // < 0: opaque
+    float metallic;
+    float pad0;
+    // inject: the batch, uLights[lightFirst + i] with its shadow maps on unit + i
+    int lightFirst;
+    int lightCount;
+    int accumulate;      // adds to the exit radiance of the earlier batches
+    int sh;              // resolve: write the SH volumes too
+    // mip
+    ivec4 destSize;      // xyz: the level written, in voxels; w unused
+    int sourceLevel;
+    int direction;       // -1: isotropic; 0..5: +X, -X, +Y, -Y, +Z, -Z
+    // anisotropic: the six directions lie side by side along x in one atlas; the direction's
+    // slab starts at these x in the source (0 for the isotropic base level) and the destination
+    int sourceOffsetX;
+    int destOffsetX;
+    // bounce, trace: the cone set and the march (trace.glsl)
+    int coneCount;
+    float tanHalf;       // tan of half the diffuse aperture
+    float maxDistance;
+    float occlusionDistance;  // trace: VAO counts opacity within this
+    int levelCount;
+    float maxLod;        // mip levels per level - 1
+    float nudge;
+    float stepMultiplier;
+    vec4 cones[kVCTMaxCones];              // xyz: tangent-space axis, w: normalised weight
+    vec4 levelMinCell[kVCTMaxLevels];      // xyz: grid minimum, w: voxel size
+    ivec4 levelWrap[kVCTMaxLevels];        // xyz: toroidal offsets (clipmap), else 0
+    // trace, upsample, voxel view
+    mat4 invViewProj;    // trace, voxel view
+    vec4 cameraPos;      // trace: xyz, w unused
+    ivec4 imageSize;     // xy: the traced image (the G-buffer's size times traceScale), zw: the G-buffer's
+    vec4 toFull;         // xy: full-resolution pixels per traced pixel, zw unused
+    vec4 specularAperture;  // trace: xy: radians at roughness 0 and 1, zw unused
+    int vao;             // trace
+    float vaoStrength;
+    float intensity;
+    int specularCone;
+    float nearPlane;     // upsample: the camera's clip planes
+    float farPlane;
+    float exposureScale;  // voxel view: radiance and emission
+    float opacityThreshold;  // voxel view: radiance voxels below it are empty
+    int viewSource;      // voxel view: VoxelViewSource, 0 albedo, 1 normal, 2 emission, 3 radiance
+    int viewMip;         // voxel view: the radiance mip marched (0 for the packed sources)
+    int edges;           // voxel view: darken voxel edges
+    float pad1;
+    vec4 background;     // voxel view: xyz, display-encoded; w unused
+};
+
 #ifdef __cplusplus
+inline constexpr const char* kVCTBlockName = "VCTBlock";
+static_assert(offsetof(VCTParams, resolution) == 64 && offsetof(VCTParams, baseColor) == 80);
+static_assert(offsetof(VCTParams, lightFirst) == 128 && offsetof(VCTParams, destSize) == 144);
+static_assert(offsetof(VCTParams, coneCount) == 176 && offsetof(VCTParams, cones) == 208);
+static_assert(offsetof(VCTParams, levelMinCell) == 208 + 16 * kVCTMaxCones);
+static_assert(offsetof(VCTParams, invViewProj) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels));
+static_assert(sizeof(VCTParams) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 64);
 }  // namespace gi::vct
+#else
+layout(std140, binding = kVCTBlockBinding) uniform VCTBlock {
+    VCTParams uVCT;
+};
 #endif

@@ -1,67 +1,57 @@
 // The VCT voxels seen from the camera (gi/vct/vct_views.h describes the view): each pixel's ray
 // is clipped to one level's grid and marched voxel by voxel (Amanatides and Woo's 3D DDA) at mip
-// uMip; the first occupied voxel is drawn as the cube face the ray enters, shaded by the face's
+// uVCT.viewMip; the first occupied voxel is drawn as the cube face the ray enters, shaded by the face's
 // direction, with darkened edges.
 #include "common/shared.h"
 #include "common/color.glsl"
+#include "vct/vct_shared.h"
 
-layout(binding = 0) uniform usampler3D uOccupancy;  // packed albedo: a > 0 where voxelized
-layout(binding = 1) uniform usampler3D uPacked;     // packed source shown (albedo, normal or emission)
-layout(binding = 2) uniform sampler3D uRadiance;    // premultiplied radiance + opacity, with mips
+layout(binding = kVCTUnitViewOccupancy) uniform usampler3D uOccupancy;
+layout(binding = kVCTUnitViewPacked) uniform usampler3D uPacked;
+layout(binding = kVCTUnitViewRadiance) uniform sampler3D uRadiance;
 
-uniform mat4 uInvViewProj;
-uniform vec3 uGridMin;        // world corner of the level
-uniform float uCellSize;      // world size of a voxel at mip 0
-uniform int uResolution;      // voxels per side at mip 0
-uniform ivec3 uWrap;          // clipmap toroidal offset (mip-0 texels), else 0
-uniform int uMip;             // radiance mip marched (0 for the packed sources)
-uniform int uSource;          // VoxelViewSource: 0 albedo, 1 normal, 2 emission, 3 radiance
-uniform float uExposureScale; // radiance and emission
-uniform float uOpacityThreshold;
-uniform bool uEdges;
-uniform vec3 uBackground;     // display-encoded
 
 in vec2 vUV;
 out vec4 oColor;
 
 // The texel holding logical voxel `cell` of a grid of `size` voxels per side (GL_REPEAT placement).
 ivec3 texelOf(ivec3 cell, int size) {
-    vec3 tc = (vec3(cell) + 0.5) / float(size) + vec3(uWrap) / float(uResolution);
+    vec3 tc = (vec3(cell) + 0.5) / float(size) + vec3(uVCT.wrapOffset.xyz) / float(uVCT.resolution);
     return clamp(ivec3(floor(fract(tc) * float(size))), ivec3(0), ivec3(size - 1));
 }
 
 // Colour of an occupied voxel (linear for the packed sources, unpremultiplied radiance), or a < 0.
 vec4 voxelColour(ivec3 cell, int size) {
     ivec3 t = texelOf(cell, size);
-    if (uSource == 3) {
-        vec4 r = texelFetch(uRadiance, t, uMip);
-        if (r.a < uOpacityThreshold) return vec4(-1.0);
-        return vec4(r.rgb / r.a * uExposureScale, 1.0);
+    if (uVCT.viewSource == 3) {
+        vec4 r = texelFetch(uRadiance, t, uVCT.viewMip);
+        if (r.a < uVCT.opacityThreshold) return vec4(-1.0);
+        return vec4(r.rgb / r.a * uVCT.exposureScale, 1.0);
     }
     if ((texelFetch(uOccupancy, t, 0).r >> 24) == 0u) return vec4(-1.0);
     vec3 c = unpackUnorm4x8(texelFetch(uPacked, t, 0).r).rgb;
-    if (uSource == 2) c *= uExposureScale;
+    if (uVCT.viewSource == 2) c *= uVCT.exposureScale;
     return vec4(c, 1.0);
 }
 
 void main() {
-    vec4 nearH = uInvViewProj * vec4(vUV * 2.0 - 1.0, -1.0, 1.0);
-    vec4 farH = uInvViewProj * vec4(vUV * 2.0 - 1.0, 1.0, 1.0);
+    vec4 nearH = uVCT.invViewProj * vec4(vUV * 2.0 - 1.0, -1.0, 1.0);
+    vec4 farH = uVCT.invViewProj * vec4(vUV * 2.0 - 1.0, 1.0, 1.0);
     vec3 origin = nearH.xyz / nearH.w;
     vec3 dir = normalize(farH.xyz / farH.w - origin);
     // No zero components: the DDA divides by them and steps by their sign.
     dir = mix(dir, vec3(1e-7), lessThan(abs(dir), vec3(1e-7)));
 
     // Grid units of the marched mip: the level spans [0, size]^3.
-    int size = max(uResolution >> uMip, 1);
-    float cell = uCellSize * float(uResolution) / float(size);
-    vec3 o = (origin - uGridMin) / cell;
+    int size = max(uVCT.resolution >> uVCT.viewMip, 1);
+    float cell = uVCT.cellSize * float(uVCT.resolution) / float(size);
+    vec3 o = (origin - uVCT.gridMin.xyz) / cell;
     vec3 inv = 1.0 / dir;
     vec3 t0 = (vec3(0.0) - o) * inv, t1 = (vec3(float(size)) - o) * inv;
     vec3 tNear = min(t0, t1), tFar = max(t0, t1);
     float tEnter = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
     float tExit = min(tFar.x, min(tFar.y, tFar.z));
-    oColor = vec4(uBackground, 1.0);
+    oColor = vec4(uVCT.background.xyz, 1.0);
     if (tEnter >= tExit) return;
 
     // The face entered first: the axis whose slab was entered last (none when the eye is inside).
@@ -81,13 +71,13 @@ void main() {
             else if (axis == 1) shade = stepDir.y < 0 ? 1.0 : 0.5;
             else if (axis == 2) shade = 0.65;
             vec3 colour = v.rgb * shade;
-            if (uEdges && axis >= 0) {
+            if (uVCT.edges != 0 && axis >= 0) {
                 vec3 f = fract(o + dir * t);
                 vec2 uv = axis == 0 ? f.yz : axis == 1 ? f.xz : f.xy;
                 vec2 edge = min(uv, 1.0 - uv);
                 if (min(edge.x, edge.y) < 0.06) colour *= 0.7;
             }
-            oColor = vec4(uSource == 1 ? colour : linearToSRGB(colour), 1.0);
+            oColor = vec4(uVCT.viewSource == 1 ? colour : linearToSRGB(colour), 1.0);
             return;
         }
         // Step into the neighbour across the nearest face.

@@ -10,20 +10,9 @@
 #include "vct/vct_shared.h"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
-layout(binding = 0, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
-layout(binding = 1, r32ui) uniform coherent volatile uimage3D uNormalVox;
-layout(binding = 2, r32ui) uniform coherent volatile uimage3D uEmissionVox;
-
-uniform vec4 uBaseColor;
-uniform bool uHasTexture;
-uniform float uAlphaCutoff;  // < 0: opaque
-uniform float uMetallic;
-uniform vec3 uEmissive;
-uniform float uEmissionScale;  // 1 / the scene's largest emission component
-uniform int uResolution;
-uniform ivec3 uClipMin;        // voxels outside [uClipMin, uClipMax) are not written (clipmap slabs)
-uniform ivec3 uClipMax;
-uniform ivec3 uWrapOffset;     // clipmap: texel = (voxel + offset) mod resolution (toroidal addressing)
+layout(binding = kVCTImageAlbedo, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
+layout(binding = kVCTImageNormal, r32ui) uniform coherent volatile uimage3D uNormalVox;
+layout(binding = kVCTImageEmission, r32ui) uniform coherent volatile uimage3D uEmissionVox;
 
 in vec3 gGrid;
 in vec3 gNormal;
@@ -51,23 +40,23 @@ vec3 unswizzle(vec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx 
 
 void main() {
     if (any(lessThan(gl_FragCoord.xy, gBox.xy)) || any(greaterThan(gl_FragCoord.xy, gBox.zw))) discard;
-    vec4 base = uBaseColor;
-    if (uHasTexture) base *= sampleMaterial(uBaseColorTex, gUV);
-    if (uAlphaCutoff >= 0.0 && base.a < uAlphaCutoff) discard;
+    vec4 base = uVCT.baseColor;
+    if (uVCT.hasTexture != 0) base *= sampleMaterial(uBaseColorTex, gUV);
+    if (uVCT.alphaCutoff >= 0.0 && base.a < uVCT.alphaCutoff) discard;
 
     float slope = 0.5 * (abs(dFdx(gGrid.z)) + abs(dFdy(gGrid.z)));
     float z0 = clamp(gGrid.z - slope, gDepthRange.x, gDepthRange.y);
     float z1 = clamp(gGrid.z + slope, gDepthRange.x, gDepthRange.y);
     int first = int(floor(z0)), last = min(int(floor(z1)), int(floor(z0)) + 2);
 
-    vec3 albedo = clamp(base.rgb * (1.0 - uMetallic), 0.0, 1.0);
+    vec3 albedo = clamp(base.rgb * (1.0 - uVCT.metallic), 0.0, 1.0);
     vec3 n = normalize(gNormal) * 0.5 + 0.5;
-    vec3 e = clamp(uEmissive * uEmissionScale, 0.0, 1.0);
-    bool emissive = any(greaterThan(uEmissive, vec3(0.0)));
+    vec3 e = clamp(uVCT.emissive.xyz * uVCT.emissionScale, 0.0, 1.0);
+    bool emissive = any(greaterThan(uVCT.emissive.xyz, vec3(0.0)));
     for (int z = first; z <= last; ++z) {
         ivec3 c = ivec3(unswizzle(vec3(floor(gl_FragCoord.xy), float(z)), gAxis));
-        if (any(lessThan(c, uClipMin)) || any(greaterThanEqual(c, uClipMax))) continue;
-        c = (c + uWrapOffset) % uResolution;
+        if (any(lessThan(c, uVCT.clipMin.xyz)) || any(greaterThanEqual(c, uVCT.clipMax.xyz))) continue;
+        c = (c + uVCT.wrapOffset.xyz) % uVCT.resolution;
         GI_RUNNING_AVERAGE(uAlbedoVox, c, albedo)
         GI_RUNNING_AVERAGE(uNormalVox, c, n)
         if (emissive) GI_RUNNING_AVERAGE(uEmissionVox, c, e)

@@ -6,12 +6,10 @@
 // fragment stage discards fragments outside the triangle's bounding box grown by half a pixel.
 // Attributes at the moved corners are extrapolated with the original triangle's barycentrics.
 // The seed's listing has bugs here (digest 000 section 6); this is written from the description.
+#include "vct/vct_shared.h"
+
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
-
-uniform vec3 uGridMin;
-uniform float uCellSize;
-uniform int uResolution;
 
 in vec3 vWorld[];
 in vec3 vNormal[];
@@ -28,7 +26,7 @@ vec3 swizzle(vec3 g, int axis) { return axis == 0 ? g.yzx : axis == 1 ? g.zxy : 
 
 void main() {
     vec3 g[3];
-    for (int i = 0; i < 3; ++i) g[i] = (vWorld[i] - uGridMin) / uCellSize;
+    for (int i = 0; i < 3; ++i) g[i] = (vWorld[i] - uVCT.gridMin.xyz) / uVCT.cellSize;
     vec3 n = abs(cross(g[1] - g[0], g[2] - g[0]));
     int axis = n.x >= n.y && n.x >= n.z ? 0 : (n.y >= n.z ? 1 : 2);
     vec3 s[3];
@@ -70,7 +68,7 @@ void main() {
         gBox = vec4(lo, hi);
         gDepthRange = vec2(zlo, zhi);
         gAxis = axis;
-        gl_Position = vec4(q / float(uResolution) * 2.0 - 1.0, 0.0, 1.0);
+        gl_Position = vec4(q / float(uVCT.resolution) * 2.0 - 1.0, 0.0, 1.0);
         EmitVertex();
     }
     EndPrimitive();
