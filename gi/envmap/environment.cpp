@@ -26,7 +26,6 @@ gl::Sampler makeSampler(GLenum minFilter, GLenum wrapS) {
                               GL_CLAMP_TO_EDGE});
 }
 
-GLuint groups(int n) { return GLuint((n + 7) / 8); }
 
 // The fields shade and sky share.
 EnvParams lookupParams(const EnvironmentSettings& s, int width, int height, const glm::mat4& invViewProj, const glm::vec3& eye) {
@@ -101,7 +100,7 @@ void Environment::computeLUT() {
     p.samples = kLUTSamples;
     mBlock.set(p);
     glBindImageTexture(kEnvImageTarget, mLUT.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
-    glDispatchCompute(groups(kLUTSize), groups(kLUTSize), 1);
+    glDispatchCompute(gl::groupCount(kLUTSize, shared::kGroup2D), gl::groupCount(kLUTSize, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -173,7 +172,7 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
     glBindTextureUnit(kEnvUnitSource, mLatLong.id());
     glBindSampler(kEnvUnitSource, mLinear.id());
     glBindImageTexture(kEnvImageTarget, mSource.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups(size), groups(size), 6);
+    glDispatchCompute(gl::groupCount(size, shared::kGroup2D), gl::groupCount(size, shared::kGroup2D), 6);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glGenerateTextureMipmap(mSource.id());
     glFinish();
@@ -220,13 +219,14 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
         double rowSamples = sampled ? 6.0 * double(faceSize) * double(samples) : 0.0;
         int rows = faceSize;
         if (rowSamples > 0.0)
-            rows = std::clamp(int(kPrefilterSamplesPerSecond * kPrefilterSecondsPerDispatch / rowSamples) / 8 * 8, 8, faceSize);
+            rows = std::clamp(int(kPrefilterSamplesPerSecond * kPrefilterSecondsPerDispatch / rowSamples) / shared::kGroup2D * shared::kGroup2D,
+                              shared::kGroup2D, faceSize);
         double start = nowMs();
         for (int row = 0; row < faceSize; row += rows) {
             int band = std::min(rows, faceSize - row);
             params.rowOffset = row;
             mBlock.set(params);
-            glDispatchCompute(groups(faceSize), groups(band), 6);
+            glDispatchCompute(gl::groupCount(faceSize, shared::kGroup2D), gl::groupCount(band, shared::kGroup2D), 6);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glFinish();
             samplesDone += rowSamples * double(band);
@@ -380,7 +380,7 @@ void Environment::shade(const EnvironmentSettings& s, GLuint normal, GLuint mate
     glBindSampler(kEnvUnitIrradiance, mCubeLinear.id());
     glBindImageTexture(kEnvImageIndirect, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(kEnvImageSpecular, specular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups(width), groups(height), 1);
+    glDispatchCompute(gl::groupCount(width, shared::kGroup2D), gl::groupCount(height, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     for (GLuint u : {units[0], units[1], units[2], GLuint(kEnvUnitPrefiltered), GLuint(kEnvUnitIrradiance)}) glBindSampler(u, 0);
 }
@@ -395,7 +395,7 @@ void Environment::sky(const EnvironmentSettings& s, GLuint depth, GLuint hdr, in
     glBindTextureUnit(kEnvUnitPrefiltered, mPrefiltered.id());
     glBindSampler(kEnvUnitPrefiltered, mCubeLinear.id());
     glBindImageTexture(kEnvImageTarget, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    glDispatchCompute(groups(width), groups(height), 1);
+    glDispatchCompute(gl::groupCount(width, shared::kGroup2D), gl::groupCount(height, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glBindSampler(kEnvUnitPrefiltered, 0);
     glBindSampler(kUnitDepth, 0);

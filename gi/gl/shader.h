@@ -12,6 +12,9 @@
 
 namespace gi::gl {
 
+// Workgroups covering n items in groups of `size` (shared::kGroup2D, kGroup3D, kGroup1D).
+inline GLuint groupCount(int n, int size) { return GLuint((n + size - 1) / size); }
+
 struct StageSource {
     GLenum stage;      // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER, ...
     std::string file;  // path relative to the shader root, e.g. "render/light.frag"

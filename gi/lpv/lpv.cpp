@@ -29,7 +29,6 @@ gl::Buffer zeroBuffer(size_t bytes) {
 
 void clearBuffer(const gl::Buffer& b) { glClearNamedBufferData(b.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr); }
 
-GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
 
 bool hasRSM(const LightSettings& l) { return l.type != LightType::Point; }
 
@@ -256,7 +255,7 @@ void LPV::inject(const FrameContext& ctx) {
         glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferInject, mCascadeData[m.cascade].inject.id());
-        glDispatchCompute(groups(mRSMResolution, 8), groups(mRSMResolution, 8), 1);
+        glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -288,7 +287,7 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[m.cascade].geometryRSM.id());
-        glDispatchCompute(groups(mRSMResolution, 8), groups(mRSMResolution, 8), 1);
+        glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
     }
     // Surfels from the camera's G-buffer, subsampled to about 128 x 128 samples.
     int stride = std::max(1, std::max(ctx.width, ctx.height) / 128);
@@ -307,7 +306,9 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
         mBlock.set(p);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryGBuffer.id());
-        glDispatchCompute(groups(groups(ctx.width, stride), 8), groups(groups(ctx.height, stride), 8), 1);
+        // One invocation per `stride`-th G-buffer pixel.
+        const int samplesX = (ctx.width + stride - 1) / stride, samplesY = (ctx.height + stride - 1) / stride;
+        glDispatchCompute(gl::groupCount(samplesX, shared::kGroup2D), gl::groupCount(samplesY, shared::kGroup2D), 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     mGeometryResolveProg.use();
@@ -319,7 +320,7 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryGBuffer, c.geometryGBuffer.id());
         glBindImageTexture(kLPVImageGeometryRSM, c.geometryRSMVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageGeometryGBuffer, c.geometryGBufferVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        GLuint g = groups(mResolution + 1, 4);
+        GLuint g = gl::groupCount(mResolution + 1, shared::kGroup3D);
         glDispatchCompute(g, g, g);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -335,7 +336,7 @@ void LPV::propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, i
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferDestination, dst);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferAccum, accum);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, transmit);
-    GLuint g = groups(resolution, 4);
+    GLuint g = gl::groupCount(resolution, shared::kGroup3D);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -356,7 +357,7 @@ void LPV::propagate(const FrameContext& ctx) {
             glBindTextureUnit(kLPVUnitGeometryRSM, c.geometryRSMVolume.id());
             glBindTextureUnit(kLPVUnitGeometryGBuffer, c.geometryGBufferVolume.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, c.transmit.id());
-            GLuint g = groups(mResolution, 4);
+            GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
             glDispatchCompute(g, g, g);
         }
         glBindSampler(kLPVUnitGeometryRSM, 0);
@@ -381,7 +382,7 @@ void LPV::propagate(const FrameContext& ctx) {
         glBindImageTexture(kLPVImageSHR, c.shR.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageSHG, c.shG.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageSHB, c.shB.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        GLuint g = groups(mResolution, 4);
+        GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
         glDispatchCompute(g, g, g);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -414,7 +415,7 @@ void LPV::shade(const FrameContext& ctx) {
     glBindTextureUnit(kUnitNormal, ctx.normal);
     glBindTextureUnit(kUnitDepth, ctx.depth);
     glBindImageTexture(kLPVImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups(ctx.width, 8), groups(ctx.height, 8), 1);
+    glDispatchCompute(gl::groupCount(ctx.width, shared::kGroup2D), gl::groupCount(ctx.height, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     for (int unit = kLPVUnitSH; unit < kLPVUnitSH + kLPVSHChannels * kLPVMaxCascades; ++unit) glBindSampler(GLuint(unit), 0);
 }

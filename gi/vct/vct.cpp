@@ -20,7 +20,6 @@ constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;
 constexpr size_t kVoxelBytes = 3 * 4 + 2 * 4;  // albedo, normal, emission (r32ui); exit front/back (R11F_G11F_B10F)
 
 size_t voxels(int res) { return size_t(res) * res * res; }
-GLuint groups(int n, int size) { return GLuint((n + size - 1) / size); }
 
 size_t mipChain(size_t bytesPerTexel, int res, int levels) {
     size_t total = 0;
@@ -199,7 +198,7 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
     glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageEmission, level.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    GLuint g = groups(mResolution, 4);
+    GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
@@ -295,7 +294,7 @@ void VCT::inject(const FrameContext& ctx) {
                 bindBatchShadowMap(i, sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
                 if (sm.depth) glBindSampler(GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i), mShadowSampler.id());
             }
-            GLuint g = groups(mResolution, 4);
+            GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
             glDispatchCompute(g, g, g);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             first += size_t(count);
@@ -328,7 +327,7 @@ void VCT::resolve(Level& level, bool bounced) {
         glBindImageTexture(vct::kVCTImageSHG, mSH[1].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(vct::kVCTImageSHB, mSH[2].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
-    GLuint g = groups(mResolution, 4);
+    GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -348,7 +347,7 @@ void VCT::buildMips() {
         mBlock.set(p);
         glBindTextureUnit(vct::kVCTUnitMipSource, src.id());
         glBindImageTexture(vct::kVCTImageMipDest, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        GLuint g = groups(size, 4);
+        GLuint g = gl::groupCount(size, shared::kGroup3D);
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     };
@@ -421,7 +420,7 @@ void VCT::bounce(const FrameContext& ctx) {
         glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferVoxels, l.occupiedList.id());
-        GLuint g = groups(mResolution, 4);
+        GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
         glDispatchCompute(g, g, g);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -482,7 +481,7 @@ void VCT::trace(const FrameContext& ctx) {
     glBindImageTexture(vct::kVCTImageIndirect, scaled ? mLowIndirect.id() : ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(vct::kVCTImageSpecular, scaled ? mLowSpecular.id() : ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY,
                        GL_RGBA16F);
-    glDispatchCompute(groups(low.x, 8), groups(low.y, 8), 1);
+    glDispatchCompute(gl::groupCount(low.x, shared::kGroup2D), gl::groupCount(low.y, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
     if (!scaled) return;
@@ -498,7 +497,7 @@ void VCT::trace(const FrameContext& ctx) {
     glBindTextureUnit(vct::kVCTUnitLowSpecular, mLowSpecular.id());
     glBindImageTexture(vct::kVCTImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(vct::kVCTImageSpecular, ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups(full.x, 8), groups(full.y, 8), 1);
+    glDispatchCompute(gl::groupCount(full.x, shared::kGroup2D), gl::groupCount(full.y, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 

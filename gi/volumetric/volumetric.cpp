@@ -23,7 +23,6 @@ glm::ivec2 marchSize(const FrameSettings& fs) {
     return {std::max(1, int(std::lround(float(fs.width) * s))), std::max(1, int(std::lround(float(fs.height) * s)))};
 }
 
-GLuint groups(int n) { return GLuint((n + 7) / 8); }
 
 // The fields of medium.glsl, which the march and the composite read.
 void setMedium(VolumeParams& p, const Medium& m) {
@@ -112,7 +111,7 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
             }
             for (int i = 0; i < n; ++i)
                 bindBatchShadowMap(i, in.shadows[first + size_t(i)], kVolumeUnitShadow2D, kVolumeUnitShadowCube);
-            glDispatchCompute(groups(mWidth), groups(mHeight), 1);
+            glDispatchCompute(gl::groupCount(mWidth, shared::kGroup2D), gl::groupCount(mHeight, shared::kGroup2D), 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }
         for (int u = 0; u < kVolumeMaxLights; ++u) {
@@ -132,7 +131,7 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
         glBindTextureUnit(kVolumeUnitSource, mMarch.id());
         glBindSampler(kVolumeUnitSource, mPoint.id());
         glBindImageTexture(kVolumeImageTarget, mBlurred.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glDispatchCompute(groups(mWidth), groups(mHeight), 1);
+        glDispatchCompute(gl::groupCount(mWidth, shared::kGroup2D), gl::groupCount(mHeight, shared::kGroup2D), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         source = mBlurred.id();
     } else {
@@ -158,7 +157,7 @@ void Volumetric::execute(const Inputs& in, gl::GpuTimer& timer) {
         glBindTextureUnit(kVolumeUnitSource, source);
         glBindSampler(kVolumeUnitSource, mLinear.id());
         glBindImageTexture(kVolumeImageTarget, in.hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-        glDispatchCompute(groups(in.width), groups(in.height), 1);
+        glDispatchCompute(gl::groupCount(in.width, shared::kGroup2D), gl::groupCount(in.height, shared::kGroup2D), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
         glBindSampler(kVolumeUnitSource, 0);
         glBindSampler(kUnitDepth, 0);

@@ -4,7 +4,8 @@
 #include "envmap/envmap.glsl"
 #include "common/ggx.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kEnvImageTarget, rg16f) uniform writeonly image2D uLUT;
 
 void main() {

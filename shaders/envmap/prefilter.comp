@@ -12,7 +12,8 @@
 // Roughness 0 copies the source.
 #include "envmap/envmap.glsl"
 
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D, local_size_z = 1) in;
 layout(binding = kEnvUnitSource) uniform samplerCube uSource;  // mip 0 = the map, full mip chain
 layout(binding = kEnvImageTarget, rgba16f) uniform writeonly imageCube uDest;
 

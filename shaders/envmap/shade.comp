@@ -5,7 +5,7 @@
 #include "envmap/envmap.glsl"
 #include "common/shared.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormal;
 layout(binding = kUnitMaterial) uniform sampler2D uMaterial;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;

@@ -3,7 +3,7 @@
 #include "envmap/envmap.glsl"
 #include "common/shared.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kEnvUnitPrefiltered) uniform samplerCube uPrefiltered;
 layout(binding = kEnvImageTarget, rgba16f) uniform image2D uHDR;

@@ -2,7 +2,8 @@
 // wrapping), unrotated: the rotation applies where the cube is read.
 #include "envmap/envmap.glsl"
 
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D, local_size_z = 1) in;
 layout(binding = kEnvUnitSource) uniform sampler2D uLatLong;
 layout(binding = kEnvImageTarget, rgba16f) uniform writeonly imageCube uCube;
 

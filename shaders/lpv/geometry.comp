@@ -3,7 +3,8 @@
 // samples sit on the LPV cell corners, half a cell off the LPV's cell centres.
 #include "lpv/common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kLPVImageNormal, rgba16f) uniform readonly image2D uRSMNormal;
 layout(binding = kLPVImagePosition, rgba32f) uniform readonly image2D uRSMPosition;
 layout(binding = kUnitNormal) uniform sampler2D uGNormal;

@@ -4,7 +4,8 @@
 // blocking of the two for each direction (adding them would count a surface both see twice).
 #include "lpv/common.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(std430, binding = kLPVBufferGeometryRSM) readonly buffer FromRSM { float fromRSM[]; };
 layout(std430, binding = kLPVBufferGeometryGBuffer) readonly buffer FromGBuffer { float fromGBuffer[]; };
 layout(binding = kLPVImageGeometryRSM, rgba16f) uniform writeonly image3D uGeometryRSM;

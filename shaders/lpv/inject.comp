@@ -3,7 +3,8 @@
 // atomicCompSwap, exact under contention).
 #include "lpv/common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kLPVImageFlux, rgba16f) uniform readonly image2D uFlux;
 layout(binding = kLPVImageNormal, rgba16f) uniform readonly image2D uNormal;
 layout(binding = kLPVImagePosition, rgba32f) uniform readonly image2D uPosition;

@@ -9,7 +9,8 @@
 // geometry volume (transmit.comp).
 #include "lpv/common.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(std430, binding = kLPVBufferSource) readonly buffer Source { vec4 src[]; };  // 3 vec4 (R, G, B) per cell
 layout(std430, binding = kLPVBufferDestination) writeonly buffer Destination { vec4 dst[]; };
 layout(std430, binding = kLPVBufferAccum) buffer Accumulated { vec4 accum[]; };

@@ -1,7 +1,8 @@
 // The accumulated SH of each cell into three RGBA16F volumes (R, G, B) for trilinear lookups.
 #include "lpv/common.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(std430, binding = kLPVBufferAccum) readonly buffer Accumulated { float accum[]; };
 layout(binding = kLPVImageSHR, rgba16f) uniform writeonly image3D uR;
 layout(binding = kLPVImageSHG, rgba16f) uniform writeonly image3D uG;

@@ -5,7 +5,8 @@
 // half a cell behind it: where it grows behind, the light comes from the surface's own VPLs.
 #include "lpv/common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormal;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kLPVImageIndirect, rgba16f) uniform writeonly image2D uIndirect;

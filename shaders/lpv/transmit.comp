@@ -3,7 +3,8 @@
 // Propagation steps then read 6 numbers instead of sampling the volume 6 times per step.
 #include "lpv/common.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kLPVUnitGeometryRSM) uniform sampler3D uGeometryRSM;
 layout(binding = kLPVUnitGeometryGBuffer) uniform sampler3D uGeometryGBuffer;
 layout(std430, binding = kLPVBufferTransmit) writeonly buffer Transmit { vec4 transmit[]; };  // 2 per cell: +x -x +y -y, +z -z

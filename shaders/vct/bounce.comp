@@ -5,7 +5,8 @@
 // resolve.comp and the mip pass then rebuild the traced volumes.
 #include "vct/trace.glsl"
 
-layout(local_size_x = 64) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup1D) in;
 layout(std430, binding = kVCTBufferDispatch) readonly buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
 layout(std430, binding = kVCTBufferVoxels) readonly buffer Voxels { uint voxels[]; };  // compact.comp's list
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;

@@ -4,7 +4,8 @@
 // the indirect dispatch that follows.
 #include "vct/common.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(std430, binding = kVCTBufferDispatch) buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
 layout(std430, binding = kVCTBufferVoxels) writeonly buffer Voxels { uint voxels[]; };
@@ -14,5 +15,5 @@ void main() {
     if (!insideGrid(v) || !occupied(imageLoad(uAlbedoVox, texelOf(v)).r)) return;
     uint i = atomicAdd(count, 1u);
     voxels[i] = uint(v.x) | (uint(v.y) << 10) | (uint(v.z) << 20);
-    if (i % 64u == 0u) atomicAdd(groupsX, 1u);
+    if (i % uint(kGroup1D) == 0u) atomicAdd(groupsX, 1u);
 }

@@ -9,7 +9,8 @@
 #include "vct/common.glsl"
 #include "common/light.h"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
 layout(binding = kVCTImageEmission, r32ui) uniform readonly uimage3D uEmissionVox;

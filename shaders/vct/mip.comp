@@ -6,7 +6,8 @@
 // the near side of the block first.
 #include "vct/vct_shared.h"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kVCTUnitMipSource) uniform sampler3D uSource;
 layout(binding = kVCTImageMipDest, rgba16f) uniform writeonly image3D uDest;
 

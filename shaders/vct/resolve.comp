@@ -5,7 +5,8 @@
 // the lit side only. Opacity stays in the isotropic volume's alpha in both cases.
 #include "vct/common.glsl"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 // After a bounce the host binds the bounced volumes at the exit bindings.
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;

@@ -5,7 +5,8 @@
 // alone is used. The traced pixel q stands for the full pixel under its centre, as in trace.comp.
 #include "vct/vct_shared.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormal;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kVCTUnitLowIndirect) uniform sampler2D uLowIndirect;

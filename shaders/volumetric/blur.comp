@@ -4,7 +4,8 @@
 // does not bleed across depth edges (normalised by the weights kept).
 #include "volumetric/volumetric_shared.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kVolumeUnitSource) uniform sampler2D uSource;
 layout(binding = kVolumeImageTarget, rgba16f) uniform writeonly image2D uOut;
 

@@ -4,7 +4,8 @@
 // bilinearly and by view-distance similarity (as the blur), the best match alone where none match.
 #include "volumetric/medium.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kVolumeUnitSource) uniform sampler2D uInscatter;
 layout(binding = kVolumeImageTarget, rgba16f) uniform image2D uHDR;

@@ -10,7 +10,8 @@
 #include "volumetric/medium.glsl"
 #include "volumetric/phase.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "common/shared.h"
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kVolumeImageTarget, rgba16f) uniform image2D uOut;
 
