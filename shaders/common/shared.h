@@ -1,11 +1,19 @@
 // Constants shared by C++ and GLSL: texture units, light types, tone mappers, view modes.
 // Written once here; C++ includes it as "common/shared.h", GLSL through the #include expander.
+// In C++ the GLSL vector and matrix types are glm's, so a parameter block's struct
+// (<technique>/<technique>_shared.h) reads the same in both languages.
 #ifdef __cplusplus
 #pragma once
+#include <glm/glm.hpp>
 #include <algorithm>
+#include <cstddef>
 #define GI_CONST inline constexpr
 #define GI_FUNC inline
 namespace gi::shared {
+using vec2 = glm::vec2;
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
 inline float clamp(float x, float lo, float hi) { return std::min(std::max(x, lo), hi); }
 #else
 #define GI_CONST const

@@ -11,14 +11,10 @@
 // agree.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
-#include <cstddef>
 #endif
 #include "common/shared.h"
 #ifdef __cplusplus
 namespace gi::shared {
-using vec4 = glm::vec4;
-using mat4 = glm::mat4;
 #endif
 
 // Mips of the prefiltered chain at most: the length of EnvParams::mipRoughness.

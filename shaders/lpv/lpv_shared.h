@@ -10,14 +10,10 @@
 // four, so std140 and C++ agree.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
-#include <cstddef>
 #endif
 #include "common/shared.h"
 #ifdef __cplusplus
 namespace gi::shared {
-using vec4 = glm::vec4;
-using mat4 = glm::mat4;
 #endif
 
 // Cascades at most (LPVSettings::cascadeCount's range): the length of LPVParams::cascadeMinCell.

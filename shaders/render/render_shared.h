@@ -13,15 +13,10 @@
 // 8-byte boundary), so std140 and C++ agree.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
-#include <cstddef>
 #endif
 #include "common/shared.h"
 #ifdef __cplusplus
 namespace gi::shared {
-using vec2 = glm::vec2;
-using vec4 = glm::vec4;
-using mat4 = glm::mat4;
 #endif
 
 // Uniform-buffer binding of RenderBlock.

@@ -7,14 +7,10 @@
 // mat4, a vec4 or a scalar in a group of four (a bare vec3 or vec2 array is padded differently).
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
-#include <cstddef>
 #endif
 #include "common/shared.h"
 #ifdef __cplusplus
 namespace gi::shared {
-using vec4 = glm::vec4;
-using mat4 = glm::mat4;
 #endif
 
 // Size of the kernel array: SSAOSettings::sampleCount is at most this.

@@ -9,16 +9,11 @@
 // ssao/ssao_shared.h: mat4, vec4, ivec4 and scalars in groups of four, so std140 and C++ agree.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
-#include <cstddef>
 #endif
 #include "common/shared.h"
 #ifdef __cplusplus
 namespace gi::vct {
 using namespace gi::shared;
-using vec4 = glm::vec4;
-using ivec4 = glm::ivec4;
-using mat4 = glm::mat4;
 #endif
 
 GI_CONST int kVCTMaxCones = 32;        // diffuse cones per set (gi/vct/cone_set.h kMaxCones)

@@ -9,14 +9,10 @@
 // groups of four, so std140 and C++ agree.
 #ifdef __cplusplus
 #pragma once
-#include <glm/glm.hpp>
-#include <cstddef>
 #endif
 #include "common/shared.h"
 #ifdef __cplusplus
 namespace gi::shared {
-using vec4 = glm::vec4;
-using mat4 = glm::mat4;
 #endif
 
 // Lights per march dispatch: one shadow map of each type per light on the units below.
