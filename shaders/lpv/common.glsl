@@ -2,5 +2,7 @@
 #include "lpv/lpv_shared.h"
 #include "common/sh.h"
 
-int cellIndex(ivec3 c) { return (c.z * uLPV.resolution + c.y) * uLPV.resolution + c.x; }
-bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uLPV.resolution))); }
+int cellIndex(ivec3 c, int res) { return (c.z * res + c.y) * res + c.x; }
+bool insideGrid(ivec3 c, int res) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(res))); }
+int cellIndex(ivec3 c) { return cellIndex(c, uLPV.resolution); }
+bool insideGrid(ivec3 c) { return insideGrid(c, uLPV.resolution); }

@@ -23,20 +23,22 @@ const ivec3 kDirections[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 
                                       ivec3(0, 0, -1));
 
 void main() {
+    // Read once: llvmpipe reloads a block member at every use inside the neighbour loop.
+    const int res = uLPV.resolution;
     ivec3 cell = ivec3(gl_GlobalInvocationID);
-    if (!insideGrid(cell)) return;
+    if (!insideGrid(cell, res)) return;
     vec4 outR = vec4(0.0), outG = vec4(0.0), outB = vec4(0.0);
     vec4 t0 = vec4(1.0), t1 = vec4(1.0);
     if (uLPV.blocking != 0) {
-        t0 = transmit[cellIndex(cell) * 2];
-        t1 = transmit[cellIndex(cell) * 2 + 1];
+        t0 = transmit[cellIndex(cell, res) * 2];
+        t1 = transmit[cellIndex(cell, res) * 2 + 1];
     }
     float faceTransmit[6] = float[6](t0.x, t0.y, t0.z, t0.w, t1.x, t1.y);
     for (int d = 0; d < 6; ++d) {
         ivec3 dir = kDirections[d];
         ivec3 neighbour = cell - dir;  // light flows from the neighbour along dir
-        if (!insideGrid(neighbour)) continue;
-        int ni = cellIndex(neighbour) * 3;
+        if (!insideGrid(neighbour, res)) continue;
+        int ni = cellIndex(neighbour, res) * 3;
         vec4 r = src[ni], g = src[ni + 1], b = src[ni + 2];
         float transmit = faceTransmit[d];
         vec3 fd = vec3(dir);
@@ -55,7 +57,7 @@ void main() {
             outB += max(dot(b, e), 0.0) * lobe;
         }
     }
-    int base = cellIndex(cell) * 3;
+    int base = cellIndex(cell, res) * 3;
     dst[base] = outR;
     dst[base + 1] = outG;
     dst[base + 2] = outB;
