@@ -37,7 +37,7 @@ void main() {
         vec3 camera = uLPV.cameraPos.xyz;
         float d = length(p - camera);
         float side = d * uLPV.pixelAngle * float(uLPV.stride);
-        area = side * side / max(abs(dot(n, (p - camera) / d)), 0.2);
+        area = side * side / max(abs(dot(n, (p - camera) / d)), kLPVMinSurfelCosine);
     } else {
         ivec2 t = ivec2(gl_GlobalInvocationID.xy);
         if (any(greaterThanEqual(t, sourceSize))) return;

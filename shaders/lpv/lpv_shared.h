@@ -20,6 +20,12 @@ namespace gi::shared {
 GI_CONST int kLPVMaxCascades = 4;
 // SH volumes per cascade in shade: R, G and B.
 GI_CONST int kLPVSHChannels = 3;
+// shade: the outer fraction of a cascade's extent over which it blends into the next.
+GI_CONST float kLPVCascadeBlend = 0.1;
+// geometry: a G-buffer surfel's area grows as 1 / |cos| towards grazing views, up to 1 / this.
+GI_CONST float kLPVMinSurfelCosine = 0.2;
+// rsm: a texel's area over cos theta is capped at 1 / this for light grazing the surface.
+GI_CONST float kLPVMinRSMCosine = 0.05;
 
 // Uniform-buffer binding of LPVBlock.
 GI_CONST int kLPVBlockBinding = 0;

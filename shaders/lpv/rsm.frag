@@ -40,7 +40,7 @@ void main() {
     }
     vec3 n = normalize(vNormal);
     if (dot(n, L) < 0.0) n = -n;  // two-sided, as the raster and the path tracer
-    float cosTheta = max(dot(n, L), 0.05);
+    float cosTheta = max(dot(n, L), kLPVMinRSMCosine);
     oFlux = vec4(base.rgb * (1.0 - uLPV.metallic) * flux, 1.0);
     oNormal = vec4(n, 1.0);
     oPosition = vec4(vWorld, area / cosTheta);

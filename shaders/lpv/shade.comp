@@ -47,7 +47,7 @@ vec3 dampedIrradiance(int k, vec3 p, vec3 n) {
 float blendWeight(int k, vec3 p) {
     float extent = uLPV.cascadeMinCell[k].w * float(uLPV.resolution);
     vec3 centre = uLPV.cascadeMinCell[k].xyz + 0.5 * extent;
-    float w = 0.1 * extent;
+    float w = kLPVCascadeBlend * extent;
     vec3 a = clamp((abs(p - centre) - (0.5 * extent - w)) / w, 0.0, 1.0);
     return max(a.x, max(a.y, a.z));
 }

@@ -22,7 +22,7 @@ void main() {
         for (int x = -2; x <= 2; ++x) {
             vec4 s = texelFetch(uSource, clamp(q + ivec2(x, y), ivec2(0), size - 1), 0);
             float w = kWeights[x + 2] * kWeights[y + 2];
-            if (uVolume.depthAware != 0) w *= exp(-abs(s.a - centre.a) / (0.05 * centre.a));
+            if (uVolume.depthAware != 0) w *= exp(-abs(s.a - centre.a) / (kVolumeDepthSimilarity * centre.a));
             sum += w * s.rgb;
             total += w;
         }

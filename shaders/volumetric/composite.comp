@@ -32,7 +32,7 @@ void main() {
         for (int i = 0; i < 4; ++i) {
             ivec2 o = ivec2(i & 1, i >> 1);
             vec4 s = texelFetch(uInscatter, clamp(base + o, ivec2(0), lowSize - 1), 0);
-            float match = exp(-abs(s.a - z) / (0.05 * z));
+            float match = exp(-abs(s.a - z) / (kVolumeDepthSimilarity * z));
             float bilinear = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
             sum += match * bilinear * s.rgb;
             total += match * bilinear;

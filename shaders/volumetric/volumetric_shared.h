@@ -17,6 +17,9 @@ namespace gi::shared {
 
 // Lights per march dispatch: one shadow map of each type per light on the units below.
 GI_CONST int kVolumeMaxLights = 4;
+// blur (depth-aware) and composite: samples weigh exp(-|z_q - z| / (this z)) by their stored view
+// distance, so light does not bleed across depth edges.
+GI_CONST float kVolumeDepthSimilarity = 0.05;
 
 // Uniform-buffer binding of VolumeBlock.
 GI_CONST int kVolumeBlockBinding = 0;
