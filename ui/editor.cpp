@@ -337,11 +337,8 @@ void Editor::readFocus() {
 
 void Editor::drawOverlays(const FrameSettings& fs, const std::vector<Previewer>& previewers) {
     if (mWidth <= 0 || mRenderer.width() <= 0) return;
-    PreviewContext ctx{fs};
-    ctx.sceneBounds = mScene.bounds;
-    ctx.viewProj = projectionMatrix(fs.camera, float(mWidth) / float(mHeight)) * viewMatrix(fs.camera);
-    ctx.width = mWidth;
-    ctx.height = mHeight;
+    // The focus is read once per pick (readFocus), not every frame.
+    PreviewContext ctx = mRenderer.previewContext(fs, std::nullopt);
     ctx.focus = mFocus;
     ctx.overlayScale = mOverlayScale;
     const ImVec2 display = ImGui::GetIO().DisplaySize;

@@ -272,7 +272,8 @@ void Renderer::render(const FrameSettings& fs) {
     renderShadows(fs);
     for (size_t i = 0; i < fs.lights.size(); ++i)
         if (fs.lights[i].castShadows)
-            mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mShadows[i].viewProj, mShadows[i].far};
+            mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mLightBuffer[i].shadowViewProj,
+                               mLightBuffer[i].shadow.x};
     renderGBuffer(viewProj);
     const glm::vec4 zero(0.0f);
     glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
@@ -313,17 +314,17 @@ void Renderer::renderShadows(const FrameSettings& fs) {
         ShadowMap& sm = mShadows[i];
         if (!l.castShadows) continue;
         // The projection the light buffer holds, so the passes that read the map agree with it.
-        sm.viewProj = mLightBuffer[i].shadowViewProj;
-        sm.far = mLightBuffer[i].shadow.x;
+        const light::GPULight& g = mLightBuffer[i];
+        const float far = g.shadow.x;
         if (l.type == LightType::Point) {
             mShadowPointProg.use();
             RenderParams params{};
             params.lightPos = glm::vec4(l.position, 1.0f);
-            params.shadowFar = sm.far;
+            params.shadowFar = far;
             // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
             const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
             const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-            glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, sm.far * light::kShadowNearRatio, sm.far);
+            glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, far * light::kShadowNearRatio, far);
             for (int face = 0; face < 6; ++face) {
                 glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
                 glClear(GL_DEPTH_BUFFER_BIT);
@@ -335,7 +336,7 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[0].id());
             glClear(GL_DEPTH_BUFFER_BIT);
             RenderParams params{};
-            params.viewProj = sm.viewProj;
+            params.viewProj = g.shadowViewProj;
             drawScene(params);
         }
     }
@@ -486,8 +487,9 @@ std::vector<DebugView> Renderer::debugViews() const {
         // Spot maps hold perspective depth: linearise it so the picture shows shapes, not white.
         const ShadowMap& sm = mShadows[i];
         int mode = cube ? kViewCubeCross : sm.type == LightType::Spot ? kViewLinearDepth : kViewRawDepth;
+        const float far = mLightBuffer[i].shadow.x;
         v.push_back({name, sm.depth.id(), sm.depth.target(), mode, cube ? mShadowSize * 4 / 3 : mShadowSize, mShadowSize,
-                     sm.far * light::kShadowNearRatio, sm.far, sm.far});
+                     far * light::kShadowNearRatio, far, far});
     }
     return v;
 }

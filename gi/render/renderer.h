@@ -111,9 +111,7 @@ public:
 private:
     struct ShadowMap {
         gl::Texture depth;
-        std::vector<gl::Framebuffer> fbos;  // 1, or 6 for cube faces
-        glm::mat4 viewProj{1.0f};           // 2D maps
-        float far = 1.0f;
+        std::vector<gl::Framebuffer> fbos;  // 1, or 6 for cube faces (the projection is mLightBuffer's)
         LightType type = LightType::Directional;
     };
 
