@@ -104,6 +104,24 @@ gi::json referenceStats(const gi::CachedReference& ref, const gi::ReferenceSetti
     return j;
 }
 
+// The frame's lights as stats.json lists them: each light's settings, and for an area light its
+// surface (name, triangles, area, power).
+gi::json lightsJson(const gi::FrameSettings& frame, const gi::Scene& scene) {
+    gi::json lights = gi::json::array();
+    for (const gi::LightSettings& l : frame.lights) {
+        gi::json j = gi::toJson(l);
+        if (l.type == gi::LightType::Area) {
+            const gi::Emitter& e = scene.emitters[size_t(l.emitter)];
+            j["surface"] = {{"name", e.name},
+                            {"triangles", e.triangles.size()},
+                            {"area", e.area},
+                            {"power", {e.power.x, e.power.y, e.power.z}}};
+        }
+        lights.push_back(j);
+    }
+    return lights;
+}
+
 int run(int argc, char** argv) {
     CLI::App app{"gi-render: render a GI Workbench preset or a glTF file headless"};
     std::string input, outDir;
@@ -148,8 +166,9 @@ int run(int argc, char** argv) {
 
     gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder, preset.render.memoryBudgetMB);
     for (const auto& w : scene.warnings) std::fprintf(stderr, "gi-render: warning: %s: %s\n", scene.name.c_str(), w.c_str());
-    if (preset.lightsFromScene && scene.lights.empty())
-        std::fprintf(stderr, "gi-render: warning: %s has no lights and the preset names none; a default sun is used\n",
+    if (gi::usesDefaultSun(preset, scene))
+        std::fprintf(stderr,
+                     "gi-render: warning: %s has no lights, no emissive surfaces and the preset names none; a default sun is used\n",
                      scene.name.c_str());
     gi::FrameSettings frame = gi::frameSettings(preset, scene, width, height);
     for (const gi::PassInfo& info : gi::passRegistry())
@@ -198,6 +217,7 @@ int run(int argc, char** argv) {
                       {"memoryBytes", renderer.memoryBytes()},
                       {"volumes", volumes},
                       {"scene", {{"name", scene.name}, {"triangles", scene.triangleCount()}, {"warnings", scene.warnings}}},
+                      {"lights", lightsJson(frame, scene)},
                       {"settings", gi::presetToJson(preset)}};
     // What each pass reports beyond time and memory (the environment's prefilter, mip by mip),
     // under its name.

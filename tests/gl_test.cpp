@@ -148,7 +148,8 @@ TEST_F(GL, AmbientAndEmissiveComposite) {
     Renderer r;
     r.setScene(s);
     FrameSettings fs = frame({0, 2, 2}, {0, 0, 0}, LightSettings{});
-    fs.lights.clear();
+    fs.lights = sceneLights(s);  // the emission is the quad's area light's (it lights nothing else)
+    ASSERT_EQ(fs.lights.size(), 1u);
     fs.render.ambient = {0.5f, 0.5f, 0.5f};
     r.render(fs);
     glm::vec3 c = centreRadiance(r);

@@ -216,7 +216,7 @@ TEST_F(LightGL, LightReadFromTheBufferOnTheGPUAgreesWithTheCPU) {
     b.grow(glm::vec3(-3.0f));
     b.grow(glm::vec3(3.0f));
     LightBuffer buffer;
-    buffer.upload(lights, b, 256);
+    buffer.upload(lights, {}, b, 256);
 
     // Points on a grid under the lights, each with every light.
     std::vector<glm::vec4> points;

@@ -91,7 +91,7 @@ std::vector<Member> renderMembers() {
             GI_MEMBER(T, pan),         GI_MEMBER(T, zoom),        GI_MEMBER(T, level),       GI_MEMBER(T, mode),
             GI_MEMBER(T, axis),        GI_MEMBER(T, slice),       GI_MEMBER(T, shComponent), GI_MEMBER(T, depthNear),
             GI_MEMBER(T, depthFar),    GI_MEMBER(T, range),       GI_MEMBER(T, scale),       GI_MEMBER(T, falseColour),
-            GI_MEMBER(T, depthCube),   GI_MEMBER(T, pad0),        GI_MEMBER(T, pad1)};
+            GI_MEMBER(T, depthCube),   GI_MEMBER(T, firstTriangle), GI_MEMBER(T, skipEmitter)};
 }
 
 std::vector<Member> vctMembers() {

@@ -32,8 +32,10 @@ Scene furnace(float albedo, glm::vec3 emission) {
     return s;
 }
 
-FrameSettings furnaceFrame(int size) {
+// The furnace's emission lights it as the scene's area lights, as frameSettings would list them.
+FrameSettings furnaceFrame(int size, const Scene& scene) {
     FrameSettings fs;
+    fs.lights = sceneLights(scene);
     fs.camera.eye = {0.0f, 0.0f, 0.3f};
     fs.camera.target = {0.0f, 0.1f, -1.0f};
     fs.camera.near = 0.01f;
@@ -46,11 +48,12 @@ FrameSettings furnaceFrame(int size) {
 TEST(Reference, WhiteFurnace) {
     const glm::vec3 e(0.5f, 0.5f, 0.5f);
     for (float albedo : {0.5f, 0.8f}) {
-        PathTracer pt(furnace(albedo, e));
+        Scene scene = furnace(albedo, e);
+        PathTracer pt(scene);
         ReferenceSettings rs;
         rs.spp = 64;
         rs.maxBounces = 64;
-        ImageRGB img = pt.render(furnaceFrame(32), rs);
+        ImageRGB img = pt.render(furnaceFrame(32, scene), rs);
         double expected = 0.5 / (1.0 - albedo);
         double mean = meanLuminance(img.rgb, 3);
         std::printf("furnace albedo %.1f: %.5f expected %.5f (error %.3f%%)\n", albedo, mean, expected,

@@ -30,7 +30,7 @@ gl::Buffer zeroBuffer(size_t bytes) {
 void clearBuffer(const gl::Buffer& b) { glClearNamedBufferData(b.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr); }
 
 
-bool hasRSM(const LightSettings& l) { return l.type != LightType::Point; }
+bool hasRSM(const LightSettings& l) { return l.type != LightType::Point && l.type != LightType::Area; }
 
 }  // namespace
 
@@ -38,7 +38,7 @@ std::string lpvIgnoredLights(const std::vector<LightSettings>& lights) {
     int points = 0;
     for (const auto& l : lights) points += !hasRSM(l);
     if (points == 0) return "";
-    return std::to_string(points) + " point light" + (points > 1 ? "s add" : " adds") +
+    return std::to_string(points) + " point or area light" + (points > 1 ? "s add" : " adds") +
            " no indirect light: the LPV injects directional and spot lights only (no cube RSM yet)";
 }
 

@@ -1,5 +1,7 @@
 #include "gi/preset/preset.h"
 
+#include "gi/scene/emitters.h"
+
 #include "gi/envmap/envmap_image.h"
 
 #include "gi/scene/camera.h"
@@ -187,6 +189,41 @@ Preset presetForInput(const std::filesystem::path& input, int sceneCamera) {
     return p;
 }
 
+bool usesDefaultSun(const Preset& p, const Scene& scene) {
+    return p.lightsFromScene && scene.lights.empty() && scene.emitters.empty();
+}
+
+std::vector<LightSettings> frameLights(const Preset& p, const Scene& scene) {
+    if (usesDefaultSun(p, scene)) {
+        // A file with no lights and nothing emissive would render black but for the ambient
+        // term: light it with a sun (gi-render and the editor say so).
+        LightSettings sun;
+        sun.direction = {-0.4f, -0.8f, -0.45f};
+        return {sun};
+    }
+    std::vector<LightSettings> listed = p.lightsFromScene ? sceneLights(scene) : p.lights;
+    // The scene's emitters light it whatever the preset lists: those it does not name join with
+    // their defaults.
+    std::vector<bool> named(scene.emitters.size(), false);
+    for (size_t i = 0; i < listed.size(); ++i) {
+        if (listed[i].type != LightType::Area) continue;
+        int e = listed[i].emitter;
+        if (e < 0 || e >= int(scene.emitters.size()))
+            throw Error("key 'lights." + std::to_string(i) + ".emitter': emitter " + std::to_string(e) +
+                        " does not exist (scene '" + scene.name + "' has " + std::to_string(scene.emitters.size()) +
+                        " emissive surfaces)");
+        named[size_t(e)] = true;
+    }
+    for (const LightSettings& l : sceneLights(scene))
+        if (l.type == LightType::Area && !named[size_t(l.emitter)]) listed.push_back(l);
+    std::vector<LightSettings> lights;
+    for (LightSettings l : listed) {
+        if (!l.enabled) continue;
+        lights.push_back(l.type == LightType::Area ? placeAreaLight(l, scene.emitters[size_t(l.emitter)]) : l);
+    }
+    return lights;
+}
+
 FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int height) {
     FrameSettings fs;
     fs.camera = p.camera;
@@ -196,13 +233,7 @@ FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int 
                         scene.name + "' has " + std::to_string(scene.cameras.size()) + ")");
         takeSceneCamera(fs.camera, scene.cameras[p.camera.sceneCamera]);
     }
-    fs.lights = p.lightsFromScene ? scene.lights : p.lights;
-    if (p.lightsFromScene && scene.lights.empty()) {
-        // A file with no lights would render black but for the ambient term: light it with a sun.
-        LightSettings sun;
-        sun.direction = {-0.4f, -0.8f, -0.45f};
-        fs.lights.push_back(sun);
-    }
+    fs.lights = frameLights(p, scene);
     static_cast<FrameSections&>(fs) = p;
     fs.technique = p.header.technique.name;
     // Found once here, so the raster and the path tracer load the same file whatever the folder.

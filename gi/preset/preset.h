@@ -87,9 +87,15 @@ struct Scene;
 // cameras (`sceneCamera`; -1 takes the first, or one framing the scene when it has none) and lights.
 // Throws gi::Error.
 Preset presetForInput(const std::filesystem::path& input, int sceneCamera);
-// Resolves the preset against a loaded scene: the scene's lights when the preset has none (a
-// default sun when the scene has none either), the
-// file's camera when camera.sceneCamera is set. Throws gi::Error for a camera index past the end.
+// True when the frame is lit by the invented default sun: the preset takes the scene's lights and
+// the scene has neither punctual lights nor emissive surfaces.
+bool usesDefaultSun(const Preset& p, const Scene& scene);
+// The frame's lights: the preset's, or the scene's (sceneLights) when it lists none; the scene's
+// emitters that the preset does not name join as area lights; lights switched off are left out;
+// the default sun only when usesDefaultSun. Throws gi::Error naming an emitter that does not exist.
+std::vector<LightSettings> frameLights(const Preset& p, const Scene& scene);
+// Resolves the preset against a loaded scene: frameLights, and the file's camera when
+// camera.sceneCamera is set. Throws gi::Error for a camera index past the end.
 FrameSettings frameSettings(const Preset& p, const Scene& scene, int width, int height);
 
 }  // namespace gi

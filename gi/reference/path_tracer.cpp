@@ -286,14 +286,42 @@ struct PathTracer::Impl {
         int draw;
     };
     std::vector<GeometryData> geometries;  // by Embree geometry ID
-    struct Emitter {
+    // The emissive triangles as this frame's lights have them: each scene emitter's triangles
+    // times its area light's colour x intensity (lights switched off are absent from the frame:
+    // their triangles emit nothing, as in the raster), drawn by power for next-event estimation.
+    struct EmissiveTriangle {
         int triangle;  // index into scene.indices / 3
-        int material;
         float area;
     };
-    std::vector<Emitter> emitters;
-    std::vector<float> emitterCdf;  // normalised, by power
-    float emitterPower = 0.0f;      // sum of area * luminance
+    struct Emission {
+        std::vector<glm::vec3> perTriangle;  // emitted radiance, 0 where none
+        std::vector<EmissiveTriangle> triangles;
+        std::vector<float> cdf;  // normalised, by power
+        float power = 0.0f;      // sum of area * luminance
+    };
+    Emission emission(const FrameSettings& fs) const {
+        Emission e;
+        e.perTriangle.assign(scene.triangleCount(), glm::vec3(0.0f));
+        for (const LightSettings& l : fs.lights) {
+            if (l.type != LightType::Area || l.emitter < 0 || size_t(l.emitter) >= scene.emitters.size()) continue;
+            const gi::Emitter& em = scene.emitters[size_t(l.emitter)];
+            for (size_t k = 0; k < em.triangles.size(); ++k) {
+                int tri = int(em.triangles[k]);
+                glm::vec3 Le = em.radiance[k] * emissionScale(l);
+                if (luminance(Le) <= 0.0f) continue;
+                const uint32_t* idx = &scene.indices[size_t(tri) * 3];
+                glm::vec3 p0 = scene.vertices[idx[0]].position, p1 = scene.vertices[idx[1]].position,
+                          p2 = scene.vertices[idx[2]].position;
+                float area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+                e.perTriangle[size_t(tri)] = Le;
+                e.triangles.push_back({tri, area});
+                e.power += area * luminance(Le);
+                e.cdf.push_back(e.power);
+            }
+        }
+        for (float& c : e.cdf) c /= e.power;
+        return e;
+    }
     std::vector<int> triangleMaterial;
     float srgbLut[256];
     // The last environment loaded, keyed by its file, so passes of one render load it once.
@@ -392,22 +420,7 @@ struct PathTracer::Impl {
             GI_ASSERT(id == di, "Embree geometry IDs follow the draws");
             rtcReleaseGeometry(geom);
             for (uint32_t t = 0; t < triCount; ++t) triangleMaterial[d.firstIndex / 3 + t] = d.material;
-
-            if (luminance(m.emissive) > 0.0f) {
-                for (uint32_t t = 0; t < triCount; ++t) {
-                    int tri = int(d.firstIndex / 3 + t);
-                    const uint32_t* idx = &scene.indices[size_t(tri) * 3];
-                    glm::vec3 p0 = scene.vertices[idx[0]].position, p1 = scene.vertices[idx[1]].position,
-                              p2 = scene.vertices[idx[2]].position;
-                    float area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
-                    if (area <= 0.0f) continue;
-                    emitters.push_back({tri, d.material, area});
-                    emitterPower += area * luminance(m.emissive);
-                    emitterCdf.push_back(emitterPower);
-                }
-            }
         }
-        for (float& c : emitterCdf) c /= emitterPower;
         rtcCommitScene(rtc);
     }
 
@@ -486,9 +499,14 @@ struct PathTracer::Impl {
     }
 
     // Light from one punctual light arriving at P along direction L (unoccluded): the light
-    // model of the raster passes (common/light.h) on the same packed light.
-    static glm::vec3 punctual(const LightSettings& settings, const glm::vec3& P, glm::vec3& L, float& dist) {
-        light::GPULight l = packLight(settings);
+    // model of the raster passes (common/light.h) on the same packed light. An area light is its
+    // point with a cosine lobe (as the volumetric march sees it); surfaces sample its triangles.
+    glm::vec3 punctual(const LightSettings& settings, const glm::vec3& P, glm::vec3& L, float& dist) const {
+        const gi::Emitter* e = settings.type == LightType::Area && settings.emitter >= 0 &&
+                                       size_t(settings.emitter) < scene.emitters.size()
+                                   ? &scene.emitters[size_t(settings.emitter)]
+                                   : nullptr;
+        light::GPULight l = packLight(settings, e);
         glm::vec3 E(l.color);
         glm::vec3 dir(l.direction);
         if (l.info.x == shared::kLightDirectional) {
@@ -505,7 +523,7 @@ struct PathTracer::Impl {
     // Radiance along the ray o + t d (t > tnear); `firstHit` gets the distance to the first
     // surface, infinity when the ray escapes.
     glm::vec3 radiance(glm::vec3 o, glm::vec3 d, float tnear, const FrameSettings& fs, const ReferenceSettings& rs,
-                       const Environment& env, PCG32& rng, uint64_t& rays, float& firstHit) const {
+                       const Environment& env, const Emission& em, PCG32& rng, uint64_t& rays, float& firstHit) const {
         const bool countDirect = rs.mode != ReferenceMode::Indirect;
         const bool countIndirect = rs.mode != ReferenceMode::Direct;
         glm::vec3 L(0.0f), beta(1.0f);
@@ -535,16 +553,17 @@ struct PathTracer::Impl {
             glm::vec3 V = -d;
 
             // Emission, on the side the shading normal points to.
-            if (luminance(m.emissive) > 0.0f && glm::dot(Ns, V) > 0.0f) {
+            const glm::vec3 Le = em.perTriangle[size_t(h.triangle)];
+            if (luminance(Le) > 0.0f && glm::dot(Ns, V) > 0.0f) {
                 bool counts = bounce <= 1 ? countDirect : countIndirect;
                 if (counts) {
                     float w = 1.0f;
                     if (bounce > 0) {
                         float cosLight = glm::dot(Ns, V);
-                        float pdfLight = luminance(m.emissive) / emitterPower * h.t * h.t / cosLight;
+                        float pdfLight = luminance(Le) / em.power * h.t * h.t / cosLight;
                         w = powerHeuristic(prevPdf, pdfLight);
                     }
-                    L += beta * m.emissive * w;
+                    L += beta * Le * w;
                 }
             }
             if (bounce >= rs.maxBounces) break;
@@ -565,6 +584,7 @@ struct PathTracer::Impl {
             bool neeCounts = bounce == 0 ? countDirect : countIndirect;
             if (neeCounts) {
                 for (const LightSettings& light : fs.lights) {
+                    if (light.type == LightType::Area) continue;  // its triangles are sampled below
                     glm::vec3 Ldir;
                     float dist;
                     glm::vec3 E = punctual(light, P, Ldir, dist);
@@ -578,7 +598,7 @@ struct PathTracer::Impl {
                     if (light.castShadows && occluded(Po, Ldir, tfar)) continue;
                     L += beta * f * NoL * E;
                 }
-                if (!emitters.empty()) L += beta * sampleEmitter(P, Po, Ns, Ng, bsdf, rng, rays);
+                if (!em.triangles.empty()) L += beta * sampleEmitter(em, P, Po, Ns, Ng, bsdf, rng, rays);
                 if (env.light && env.sampled) L += beta * sampleEnvironmentLight(env, Po, Ns, Ng, bsdf, rng, rays);
             }
 
@@ -631,12 +651,12 @@ struct PathTracer::Impl {
         return L;
     }
 
-    glm::vec3 sampleEmitter(const glm::vec3& P, const glm::vec3& Po, const glm::vec3& Ns, const glm::vec3& Ng,
-                            const BSDF& bsdf, PCG32& rng, uint64_t& rays) const {
+    glm::vec3 sampleEmitter(const Emission& em, const glm::vec3& P, const glm::vec3& Po, const glm::vec3& Ns,
+                            const glm::vec3& Ng, const BSDF& bsdf, PCG32& rng, uint64_t& rays) const {
         float u = rng.uniform();
-        size_t i = size_t(std::lower_bound(emitterCdf.begin(), emitterCdf.end(), u) - emitterCdf.begin());
-        i = std::min(i, emitters.size() - 1);
-        const Emitter& e = emitters[i];
+        size_t i = size_t(std::lower_bound(em.cdf.begin(), em.cdf.end(), u) - em.cdf.begin());
+        i = std::min(i, em.triangles.size() - 1);
+        const EmissiveTriangle& e = em.triangles[i];
         const uint32_t* idx = &scene.indices[size_t(e.triangle) * 3];
         float su = std::sqrt(rng.uniform()), v = rng.uniform();
         float b1 = 1.0f - su, b2 = v * su;  // barycentrics of vertices 1 and 2 (Embree's u, v)
@@ -651,14 +671,14 @@ struct PathTracer::Impl {
         float cosLight = glm::dot(Nl, -Ldir);
         float NoL = glm::dot(Ns, Ldir);
         if (cosLight <= 0.0f || NoL <= 0.0f || glm::dot(Ng, Ldir) <= 0.0f) return glm::vec3(0.0f);
-        const Material& m = scene.materials[e.material];
-        float pdfLight = luminance(m.emissive) / emitterPower * dist2 / cosLight;
+        const glm::vec3 Le = em.perTriangle[size_t(e.triangle)];
+        float pdfLight = luminance(Le) / em.power * dist2 / cosLight;
         glm::vec3 f = bsdf.eval(Ldir);
         if (maxComponent(f) <= 0.0f) return glm::vec3(0.0f);
         ++rays;
         if (occluded(Po, Ldir, dist * (1.0f - 1e-3f))) return glm::vec3(0.0f);
         float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
-        return f * NoL * m.emissive * w / pdfLight;
+        return f * NoL * Le * w / pdfLight;
     }
 
     // Next-event estimation of the environment: a direction drawn from its luminance, an
@@ -705,6 +725,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
         env.skybox = fs.environment.skybox;
         env.sampled = mEnvironmentSampling;
     }
+    const Impl::Emission emission = mImpl->emission(fs);
     std::atomic<bool> cancelled{false};
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
         if (cancel && cancel->load()) {
@@ -725,7 +746,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
                     glm::vec3 dir = glm::normalize(glm::vec3(pf) / pf.w - glm::vec3(pn) / pn.w);
                     float tnear = fs.camera.near / std::max(glm::dot(dir, forward), 1e-4f);
                     float tHit;
-                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, env, rng, rays, tHit);
+                    glm::vec3 L = mImpl->radiance(fs.camera.eye, dir, tnear, fs, rs, env, emission, rng, rays, tHit);
                     // After the path, so the path's random numbers do not depend on the medium.
                     if (medium.active) L = mImpl->throughMedium(medium, fs.camera.eye, dir, tHit, L, fs, rs, rng, rays);
                     if (std::isfinite(L.x + L.y + L.z)) acc += glm::dvec3(L);

@@ -1,16 +1,22 @@
 #include "gi/render/gpu_scene.h"
 
+#include "common/light.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace gi {
 
-GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.materials), mBounds(scene.bounds) {
+GPUScene::GPUScene(const Scene& scene)
+    : mDraws(scene.draws), mMaterials(scene.materials), mEmitters(scene.emitters), mBounds(scene.bounds) {
     static uint64_t sCount = 0;
     mId = ++sCount;
     mVertices = gl::createBuffer(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());
     mIndices = gl::createBuffer(scene.indices.size() * sizeof(uint32_t), scene.indices.data());
-    mBytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
+    std::vector<int> emitterOf = scene.triangleEmitter;
+    emitterOf.resize(std::max<size_t>(scene.triangleCount(), 1), -1);
+    mTriangleEmitter = gl::createBuffer(emitterOf.size() * sizeof(int), emitterOf.data());
+    mBytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t) + emitterOf.size() * sizeof(int);
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     mVAO = gl::VertexArray(vao);
@@ -33,8 +39,12 @@ GPUScene::GPUScene(const Scene& scene) : mDraws(scene.draws), mMaterials(scene.m
     }
 }
 
+void GPUScene::bindTriangleEmitters() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, light::kTriangleEmitterBinding, mTriangleEmitter.id());
+}
+
 size_t GPUScene::estimateBytes(const Scene& scene) {
-    size_t bytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t);
+    size_t bytes = scene.vertices.size() * sizeof(Vertex) + scene.indices.size() * sizeof(uint32_t) + scene.triangleCount() * sizeof(int);
     for (const Texture& t : scene.textures) bytes += t.rgba.size() * 4 / 3;  // the mip chain adds a third
     return bytes;
 }

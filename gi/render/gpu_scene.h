@@ -6,6 +6,7 @@
 #include "gi/scene/scene.h"
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace gi {
@@ -14,12 +15,17 @@ namespace gi {
 class GPUScene {
 public:
     explicit GPUScene(const Scene& scene);
-    // Issues the scene's draws. `bindMaterial` sets per-material uniforms and textures.
+    // Issues the scene's draws. `bindMaterial(material, index)` sets per-material uniforms and
+    // textures; given a third parameter it also gets the draw's first triangle (the index of its
+    // gl_PrimitiveID 0 in per-triangle buffers such as uTriangleEmitter).
     template <class F>
     void draw(F&& bindMaterial) const {
         glBindVertexArray(mVAO.id());
         for (const Draw& d : mDraws) {
-            bindMaterial(mMaterials[d.material], d.material);
+            if constexpr (std::is_invocable_v<F, const Material&, int, int>)
+                bindMaterial(mMaterials[d.material], d.material, int(d.firstIndex / 3));
+            else
+                bindMaterial(mMaterials[d.material], d.material);
             glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,
                            reinterpret_cast<const void*>(uintptr_t(d.firstIndex) * 4));
         }
@@ -33,6 +39,10 @@ public:
     uint64_t id() const { return mId; }
     size_t memoryBytes() const { return mBytes; }
     const Bounds& bounds() const { return mBounds; }
+    // The scene's emissive surfaces (Scene::emitters), which area lights name.
+    const std::vector<Emitter>& emitters() const { return mEmitters; }
+    // Binds the per-triangle emitter index at light::kTriangleEmitterBinding.
+    void bindTriangleEmitters() const;
 
 private:
     gl::Buffer mVertices, mIndices;
@@ -40,6 +50,8 @@ private:
     std::vector<gl::Texture> mTextures;
     std::vector<Draw> mDraws;
     std::vector<Material> mMaterials;
+    std::vector<Emitter> mEmitters;
+    gl::Buffer mTriangleEmitter;
     Bounds mBounds;
     size_t mBytes = 0;
     uint64_t mId = 0;

@@ -6,7 +6,9 @@
 
 namespace gi {
 
-light::GPULight packLight(const LightSettings& l) {
+glm::vec3 emissionScale(const LightSettings& l) { return l.color * l.intensity; }
+
+light::GPULight packLight(const LightSettings& l, const Emitter* emitter, int firstTriangle) {
     light::GPULight g{};
     g.color = glm::vec4(l.color * l.intensity, 0.0f);
     g.position = glm::vec4(l.position, l.range);
@@ -14,6 +16,17 @@ light::GPULight packLight(const LightSettings& l) {
     g.spot = glm::vec4(light::spotCosines(l.innerConeDeg, l.outerConeDeg), 0.0f, 0.0f);
     g.info = glm::ivec4(int(l.type), l.castShadows ? 1 : 0, 0, 0);
     g.shadowViewProj = glm::mat4(1.0f);
+    if (l.type == LightType::Area) {
+        // colour: the mean radiance, so colour x area x cos / d^2 is the light seen from afar.
+        g.spot = glm::vec4(0.0f);
+        g.color = glm::vec4(0.0f);
+        if (emitter && emitter->area > 0.0f) {
+            g.color = glm::vec4(emissionScale(l) * emitter->power / emitter->area, 0.0f);
+            g.spot = glm::vec4(emitter->area, std::sqrt(emitter->area / shared::kPi), emitter->doubleSided ? 1.0f : 0.0f, 0.0f);
+            g.info.z = firstTriangle;
+            g.info.w = int(emitter->triangles.size());
+        }
+    }
     return g;
 }
 
@@ -48,22 +61,47 @@ void bindBatchShadowMap(int i, const ShadowMapView& sm, GLuint unit2D, GLuint un
     if (sm.depth) glBindTextureUnit((sm.cube ? unitCube : unit2D) + GLuint(i), sm.depth);
 }
 
-void LightBuffer::upload(const std::vector<LightSettings>& lights, const Bounds& sceneBounds, int shadowSize) {
+namespace {
+// Uploads `data` into `buffer` (grown to at least one entry, so it can be bound) and binds it.
+template <class T>
+void uploadStorage(gl::Buffer& buffer, size_t& capacity, const std::vector<T>& data, GLuint binding) {
+    size_t count = std::max<size_t>(data.size(), 1);
+    if (count > capacity) {
+        buffer = gl::createBuffer(count * sizeof(T), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        capacity = count;
+    }
+    if (!data.empty()) glNamedBufferSubData(buffer.id(), 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer.id());
+}
+}  // namespace
+
+void LightBuffer::upload(const std::vector<LightSettings>& lights, const std::vector<Emitter>& emitters,
+                         const Bounds& sceneBounds, int shadowSize) {
     mLights.clear();
+    mTriangles.clear();
+    mScales.assign(std::max<size_t>(emitters.size(), 1), glm::vec4(0.0f));
     for (const LightSettings& l : lights) {
-        light::GPULight g = packLight(l);
+        const Emitter* e = nullptr;
+        if (l.type == LightType::Area && l.emitter >= 0 && size_t(l.emitter) < emitters.size()) e = &emitters[size_t(l.emitter)];
+        light::GPULight g = packLight(l, e, int(mTriangles.size()));
         setShadowProjection(g, l, sceneBounds, shadowSize);
         mLights.push_back(g);
+        if (!e) continue;
+        glm::vec3 scale = emissionScale(l);
+        mScales[size_t(l.emitter)] = glm::vec4(scale, 0.0f);
+        for (size_t t = 0; t < e->triangles.size(); ++t) {
+            light::GPUAreaTriangle tri;
+            tri.p0 = glm::vec4(e->corners[3 * t], 0.0f);
+            tri.p1 = glm::vec4(e->corners[3 * t + 1], 0.0f);
+            tri.p2 = glm::vec4(e->corners[3 * t + 2], 0.0f);
+            tri.radiance = glm::vec4(e->radiance[t] * scale, 0.0f);
+            mTriangles.push_back(tri);
+        }
     }
+    uploadStorage(mTriangleBuffer, mTriangleCapacity, mTriangles, light::kAreaTriangleBinding);
+    uploadStorage(mScaleBuffer, mScaleCapacity, mScales, light::kEmitterScaleBinding);
     // Never empty: a buffer needs storage to be bound, and passes read none of it then.
-    size_t count = std::max<size_t>(mLights.size(), 1);
-    if (count > mCapacity) {
-        mBuffer = gl::createBuffer(count * sizeof(light::GPULight), nullptr, GL_DYNAMIC_STORAGE_BIT);
-        mCapacity = count;
-    }
-    if (!mLights.empty())
-        glNamedBufferSubData(mBuffer.id(), 0, GLsizeiptr(mLights.size() * sizeof(light::GPULight)), mLights.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, light::kLightBufferBinding, mBuffer.id());
+    uploadStorage(mBuffer, mCapacity, mLights, light::kLightBufferBinding);
 }
 
 }  // namespace gi

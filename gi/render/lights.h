@@ -17,8 +17,13 @@
 
 namespace gi {
 
-// Light l as the GPU reads it; the shadow fields are left for setShadowProjection.
-light::GPULight packLight(const LightSettings& l);
+// Light l as the GPU reads it; the shadow fields are left for setShadowProjection. An area light
+// takes its shape from `emitter` (its triangles start at `firstTriangle` of the area buffer);
+// without one it packs as a lobe with no area (its light is nothing).
+light::GPULight packLight(const LightSettings& l, const Emitter* emitter = nullptr, int firstTriangle = 0);
+
+// The factor on an emitter's emission that light l gives: colour x intensity.
+glm::vec3 emissionScale(const LightSettings& l);
 
 // Fills g's shadow fields: the projection of light l's shadow map (square, `size` texels) over a
 // scene with bounds b. Directional: an orthographic box around the scene's bounding sphere;
@@ -36,14 +41,18 @@ void bindBatchShadowMap(int i, const ShadowMapView& sm, GLuint unit2D, GLuint un
 class LightBuffer {
 public:
     // Packs the lights with their shadow projections, uploads them and binds the buffer at
-    // light::kLightBufferBinding for every pass of the frame.
-    void upload(const std::vector<LightSettings>& lights, const Bounds& sceneBounds, int shadowSize);
+    // light::kLightBufferBinding for every pass of the frame; the area lights' triangles at
+    // light::kAreaTriangleBinding and each emitter's factor at light::kEmitterScaleBinding.
+    void upload(const std::vector<LightSettings>& lights, const std::vector<Emitter>& emitters, const Bounds& sceneBounds,
+                int shadowSize);
     const light::GPULight& operator[](size_t i) const { return mLights[i]; }
 
 private:
     std::vector<light::GPULight> mLights;
-    gl::Buffer mBuffer;
-    size_t mCapacity = 0;  // lights the buffer holds
+    std::vector<light::GPUAreaTriangle> mTriangles;
+    std::vector<glm::vec4> mScales;
+    gl::Buffer mBuffer, mTriangleBuffer, mScaleBuffer;
+    size_t mCapacity = 0, mTriangleCapacity = 0, mScaleCapacity = 0;  // entries each buffer holds
 };
 
 }  // namespace gi

@@ -101,7 +101,7 @@ size_t Renderer::estimateFrameBytes(const FrameSettings& fs) {
     size_t bytes = pixels * (kGBufferBytesPerPixel + kTargetBytesPerPixel);
     size_t face = size_t(fs.render.shadowMapSize) * size_t(fs.render.shadowMapSize) * 4;
     for (const auto& l : fs.lights)
-        if (l.castShadows) bytes += face * (l.type == LightType::Point ? 6 : 1);
+        if (l.castShadows) bytes += face * (light::cubeShadow(int(l.type)) ? 6 : 1);
     for (const PassInfo& info : passRegistry())
         if (passActive(info, fs)) bytes += info.estimateBytes(fs);
     return bytes;
@@ -180,7 +180,7 @@ void Renderer::prepareShadows(const FrameSettings& fs) {
         ShadowMap sm;
         sm.type = l.type;
         if (l.castShadows) {
-            if (l.type == LightType::Point) {
+            if (light::cubeShadow(int(l.type))) {
                 sm.depth = gl::Texture::createCube(GL_DEPTH_COMPONENT32F, mShadowSize);
                 for (int face = 0; face < 6; ++face) {
                     gl::Framebuffer fbo = gl::createFramebuffer();
@@ -237,7 +237,8 @@ void Renderer::render(const FrameSettings& fs) {
     resize(fs.width, fs.height);
     prepareShadows(fs);
     selectPasses(fs);
-    mLightBuffer.upload(fs.lights, mScene->bounds(), mShadowSize);
+    mLightBuffer.upload(fs.lights, mScene->emitters(), mScene->bounds(), mShadowSize);
+    mScene->bindTriangleEmitters();
     mCamera = fs.camera;
 
     glm::mat4 view = viewMatrix(fs.camera);
@@ -272,7 +273,7 @@ void Renderer::render(const FrameSettings& fs) {
     renderShadows(fs);
     for (size_t i = 0; i < fs.lights.size(); ++i)
         if (fs.lights[i].castShadows)
-            mShadowViews[i] = {mShadows[i].depth.id(), fs.lights[i].type == LightType::Point, mLightBuffer[i].shadowViewProj,
+            mShadowViews[i] = {mShadows[i].depth.id(), light::cubeShadow(int(fs.lights[i].type)), mLightBuffer[i].shadowViewProj,
                                mLightBuffer[i].shadow.x};
     renderGBuffer(viewProj);
     const glm::vec4 zero(0.0f);
@@ -299,7 +300,8 @@ void Renderer::renderShadows(const FrameSettings& fs) {
 
     // `params` holds the face's projection; the material fields are filled per draw.
     auto drawScene = [&](RenderParams& params) {
-        mScene->draw([&](const Material& m, int) {
+        mScene->draw([&](const Material& m, int, int firstTriangle) {
+            params.firstTriangle = firstTriangle;
             bool mask = m.alphaMode == AlphaMode::Mask;
             params.alphaCutoff = mask ? m.alphaCutoff : -1.0f;
             params.baseColor = m.baseColor;
@@ -316,11 +318,13 @@ void Renderer::renderShadows(const FrameSettings& fs) {
         // The projection the light buffer holds, so the passes that read the map agree with it.
         const light::GPULight& g = mLightBuffer[i];
         const float far = g.shadow.x;
-        if (l.type == LightType::Point) {
+        if (light::cubeShadow(int(l.type))) {
             mShadowPointProg.use();
             RenderParams params{};
             params.lightPos = glm::vec4(l.position, 1.0f);
             params.shadowFar = far;
+            // An area light's own surface, through whose middle the map looks, casts no shadow.
+            params.skipEmitter = l.type == LightType::Area ? l.emitter : -1;
             // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
             const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
             const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
@@ -336,6 +340,7 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[0].id());
             glClear(GL_DEPTH_BUFFER_BIT);
             RenderParams params{};
+            params.skipEmitter = -1;
             params.viewProj = g.shadowViewProj;
             drawScene(params);
         }
@@ -360,7 +365,8 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     RenderParams params{};
     params.viewProj = viewProj;
     glBindSampler(kUnitBaseColor, mMaterialSampler.id());
-    mScene->draw([&](const Material& m, int) {
+    mScene->draw([&](const Material& m, int, int firstTriangle) {
+        params.firstTriangle = firstTriangle;
         params.baseColor = m.baseColor;
         params.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
         params.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
@@ -413,18 +419,25 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     params.shadowSize = float(mShadowSize);
     glBindSampler(kUnitShadow2D, mShadowSampler.id());
     glBindSampler(kUnitShadowCube, mShadowSampler.id());
+    glBindSampler(kUnitShadowCubeDepth, mPointSampler.id());
     // Units of the other shadow type must still hold a texture of the sampler's type.
     glBindTextureUnit(kUnitShadow2D, 0);
     glBindTextureUnit(kUnitShadowCube, 0);
+    glBindTextureUnit(kUnitShadowCubeDepth, 0);
     for (size_t i = 0; i < fs.lights.size(); ++i) {
         const LightSettings& l = fs.lights[i];
         const ShadowMap& sm = mShadows[i];
         params.lightIndex = int(i);
         mBlock.set(params);
-        if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
+        const bool cube = light::cubeShadow(int(l.type));
+        if (l.castShadows) glBindTextureUnit(cube ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
+        // The area lights' soft shadows search the same map's distances for blockers.
+        if (l.castShadows && cube) glBindTextureUnit(kUnitShadowCubeDepth, sm.depth.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
-        if (l.castShadows) glBindTextureUnit(l.type == LightType::Point ? kUnitShadowCube : kUnitShadow2D, 0);
+        if (l.castShadows) glBindTextureUnit(cube ? kUnitShadowCube : kUnitShadow2D, 0);
+        if (l.castShadows && cube) glBindTextureUnit(kUnitShadowCubeDepth, 0);
     }
+    glBindSampler(kUnitShadowCubeDepth, 0);
     glDisable(GL_BLEND);
     for (int u = kUnitAlbedo; u <= kUnitIndirectSpecular; ++u) glBindSampler(u, 0);
 }
@@ -483,7 +496,7 @@ std::vector<DebugView> Renderer::debugViews() const {
     for (size_t i = 0; i < mShadows.size(); ++i) {
         if (!mShadows[i].depth) continue;
         std::string name = "shadow" + std::to_string(i);
-        bool cube = mShadows[i].type == LightType::Point;
+        bool cube = light::cubeShadow(int(mShadows[i].type));
         // Spot maps hold perspective depth: linearise it so the picture shows shapes, not white.
         const ShadowMap& sm = mShadows[i];
         int mode = cube ? kViewCubeCross : sm.type == LightType::Spot ? kViewLinearDepth : kViewRawDepth;

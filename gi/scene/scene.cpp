@@ -1,5 +1,6 @@
 #include "gi/scene/scene.h"
 
+#include "gi/scene/emitters.h"
 #include "gi/scene/mesh_builder.h"
 
 #include "gi/util/error.h"
@@ -28,6 +29,7 @@ void Scene::finalize() {
     draws = std::move(merged);
     bounds = Bounds();
     for (uint32_t i : indices) bounds.grow(vertices[i].position);
+    buildEmitters(*this);
 }
 
 namespace {

@@ -62,6 +62,26 @@ struct Bounds {
     glm::vec3 extent() const { return max - min; }
 };
 
+// Emissive triangles grouped into area lights when the scene loads (buildEmitters): connected
+// triangles of one material, split in space into parts of kMaxEmitterTriangles (larger parts
+// when the scene has more emissive triangles than kMaxEmitters such parts hold; lights of more
+// than kMaxEmitterTriangles shade as points with a cosine lobe). Each triangle is wound so that
+// its front, (p1 - p0) x (p2 - p0), faces the side it emits from.
+inline constexpr int kMaxEmitterTriangles = 16;
+inline constexpr int kMaxEmitters = 32;
+struct Emitter {
+    std::string name;                 // the material's name, with #k when it makes several
+    int material = -1;
+    std::vector<uint32_t> triangles;  // triangle indices (into Scene::indices / 3)
+    std::vector<glm::vec3> corners;   // 3 per triangle, world space, front-wound
+    std::vector<glm::vec3> radiance;  // per triangle: the material's emission (factor x strength)
+    glm::vec3 centroid{0.0f};         // area-weighted
+    glm::vec3 normal{0.0f, -1.0f, 0.0f};  // unit, area-weighted mean of the fronts: the way light leaves
+    float area = 0.0f;
+    glm::vec3 power{0.0f};            // sum of radiance x area (the flux is pi times this, one side)
+    bool doubleSided = false;
+};
+
 struct Scene {
     std::string name;
     std::vector<Vertex> vertices;   // world space
@@ -70,14 +90,22 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<CameraSettings> cameras;  // the file's cameras (eye/target/fov), in file order
-    std::vector<LightSettings> lights;    // the file's or the built-in scene's lights
+    std::vector<LightSettings> lights;    // the file's or the built-in scene's punctual lights
+    std::vector<Emitter> emitters;        // emissive surfaces as area lights (finalize builds them)
+    std::vector<int> triangleEmitter;     // per triangle: its emitter, -1 for none
     std::vector<std::string> warnings;    // content that was skipped, one line each
     Bounds bounds;
 
     size_t triangleCount() const { return indices.size() / 3; }
-    // Sorts draws by material, merges neighbours and computes bounds. Loaders call it last.
+    // Sorts draws by material, merges neighbours, computes bounds and groups the emissive triangles
+    // into emitters (a warning when more than kMaxEmitters: the faintest then emit nothing, in
+    // the raster and the reference alike). Loaders call it last.
     void finalize();
 };
+
+// The scene's lights as a preset lists them: its punctual lights, then one area light (intensity
+// 1, white) per emitter; the four most powerful emitters cast shadows.
+std::vector<LightSettings> sceneLights(const Scene& scene);
 
 // Built-in scenes that need no files.
 std::vector<std::string> builtinSceneNames();

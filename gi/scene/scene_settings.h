@@ -29,36 +29,45 @@ struct CameraSettings {
     }
 };
 
-enum class LightType { Directional, Point, Spot };
+// Area lights are the scene's emissive surfaces (gi/scene/scene.h Emitter), one light per
+// emitter: the scene lists them beside its punctual lights, and a preset names them by index to
+// switch them off, tint or scale them. Their shape, position and direction come from the scene.
+enum class LightType { Directional, Point, Spot, Area };
 template <>
 struct EnumNames<LightType> {
-    static constexpr std::array<std::pair<LightType, const char*>, 3> values{
-        {{LightType::Directional, "directional"}, {LightType::Point, "point"}, {LightType::Spot, "spot"}}};
+    static constexpr std::array<std::pair<LightType, const char*>, 4> values{{{LightType::Directional, "directional"},
+                                                                             {LightType::Point, "point"},
+                                                                             {LightType::Spot, "spot"},
+                                                                             {LightType::Area, "area"}}};
 };
 
 struct LightSettings {
     static constexpr std::string_view kSection = "lights";
     LightType type = LightType::Directional;        // directional, point or spot
     glm::vec3 color{1.0f, 1.0f, 1.0f};              // linear RGB tint
-    float intensity = 3.0f;                         // illuminance (directional) or intensity (point/spot), relative units
+    bool enabled = true;                            // a light switched off is left out of the frame
+    float intensity = 3.0f;                         // illuminance (directional), intensity (point/spot), scale (area)
     glm::vec3 position{0.0f, 5.0f, 0.0f};           // point and spot: world position
     glm::vec3 direction{-0.35f, -0.88f, 0.32f};     // directional and spot: direction the light travels
     float range = 0.0f;                             // point and spot: glTF range window, 0 = infinite
     float innerConeDeg = 20.0f;                     // spot: full intensity inside this half-angle
     float outerConeDeg = 30.0f;                     // spot: zero intensity outside this half-angle
     bool castShadows = true;                        // render a shadow map for this light
+    int emitter = -1;                               // area: index of the scene's emitter
 
     template <class V>
     void visit(V&& v) {
         v(type, {"type", "Light type", "", 0, 0, Cost::Reallocate});
-        v(color, {"color", "Linear RGB colour", "", 0, 1e3});
-        v(intensity, {"intensity", "Illuminance (directional) or radiant intensity (point, spot)", "", 0, 1e7});
+        v(enabled, {"enabled", "Light the scene with it", "", 0, 0, Cost::Reallocate});
+        v(color, {"color", "Linear RGB colour (area: a tint of the surface's emission)", "", 0, 1e3});
+        v(intensity, {"intensity", "Illuminance (directional), radiant intensity (point, spot) or emission scale (area)", "", 0, 1e7});
         v(position, {"position", "World position (point, spot)", "m", -1e6, 1e6});
         v(direction, {"direction", "Direction the light travels (directional, spot)", "", -1e3, 1e3});
         v(range, {"range", "Distance where the light fades to zero (0: infinite)", "m", 0, 1e6});
         v(innerConeDeg, {"innerConeDeg", "Spot half-angle of full intensity", "deg", 0, 89.9});
         v(outerConeDeg, {"outerConeDeg", "Spot half-angle where intensity reaches zero", "deg", 0.1, 90});
         v(castShadows, {"castShadows", "Render a shadow map for this light", "", 0, 0, Cost::Reallocate});
+        v(emitter, {"emitter", "Area: the scene's emissive surface (its index in the Lights panel)", "", -1, 1023, Cost::Reallocate});
     }
 };
 

@@ -42,6 +42,7 @@ GI_CONST int kUnitShadowCube = 7;
 GI_CONST int kUnitAO = 8;  // ambient occlusion (gi/ssao), multiplies the indirect term
 GI_CONST int kUnitIndirectSpecular = 9;  // specular radiance from the technique (VCT's cone), or 0
 GI_CONST int kUnitBRDFLUT = 10;  // the split-sum table (gi/envmap/environment.h), (A, B) by (N.V, roughness)
+GI_CONST int kUnitShadowCubeDepth = 11;  // the light pass: the cube shadow map's distances, uncompared (soft shadows)
 // Material base colour texture in the G-buffer and shadow passes.
 GI_CONST int kUnitBaseColor = 0;
 // Source texture of the view and tone-map passes.
@@ -52,6 +53,7 @@ GI_CONST int kUnitSourceCube = 1;
 GI_CONST int kLightDirectional = 0;
 GI_CONST int kLightPoint = 1;
 GI_CONST int kLightSpot = 2;
+GI_CONST int kLightArea = 3;  // an emitter of the scene (gi/scene/scene.h Emitter): its triangles in the area buffer
 
 // ToneMapper as an int.
 GI_CONST int kToneLinear = 0;

@@ -1,8 +1,9 @@
 // G-buffer: albedo (sRGB texture decoded by the sampler), world normal, roughness/metallic,
-// emissive. Alpha-masked materials discard below the cutoff. Back faces flip their normal so
+// emissive (times its area light's scale). Alpha-masked materials discard below the cutoff. Back faces flip their normal so
 // single-sheet geometry (curtains, leaves) is lit from both sides.
 #include "render/render_shared.h"
 #include "common/material.glsl"
+#include "common/light.h"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 
@@ -23,5 +24,11 @@ void main() {
     oAlbedo = vec4(base.rgb, 1.0);
     oNormal = vec4(n, 1.0);
     oMaterial = vec4(uRender.roughness, uRender.metallic, 0.0, 1.0);
-    oEmissive = vec4(uRender.emissive.rgb, 1.0);
+    // Emission belongs to an emitter (an area light), scaled by that light (0 when it is off).
+    vec3 emission = uRender.emissive.rgb;
+    if (any(greaterThan(emission, vec3(0.0)))) {
+        int e = uTriangleEmitter[uRender.firstTriangle + gl_PrimitiveID];
+        emission = e >= 0 ? emission * uEmitterScale[e].rgb : vec3(0.0);
+    }
+    oEmissive = vec4(emission, 1.0);
 }

@@ -64,8 +64,9 @@ struct RenderParams {
     float scale;         // stored value to radiance (SH volumes)
     int falseColour;     // 1: magnitudes as a colour ramp
     int depthCube;       // cube views: 1 for a depth cube (point shadow map), shown as grey
-    float pad0;
-    float pad1;
+    // gbuffer, shadow
+    int firstTriangle;   // the draw's first triangle in the scene (uTriangleEmitter's index of gl_PrimitiveID 0)
+    int skipEmitter;     // shadow: the emitter whose own triangles cast no shadow (its area light's map), -1 none
 };
 
 #ifdef __cplusplus

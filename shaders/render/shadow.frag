@@ -1,8 +1,10 @@
-// Shadow pass fragment: alpha-masked materials cut holes. With LINEAR_DEPTH (point lights) it
-// stores distance / far so the six cube faces share one linear depth scale; without it the
-// depth is left to fixed function, which keeps early depth testing on.
+// Shadow pass fragment: alpha-masked materials cut holes. With LINEAR_DEPTH (point and area
+// lights) it stores distance / far so the six cube faces share one linear depth scale, and an
+// area light's own surface is left out of its map; without it the depth is left to fixed
+// function, which keeps early depth testing on.
 #include "render/render_shared.h"
 #include "common/material.glsl"
+#include "common/light.h"
 
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 
@@ -15,6 +17,7 @@ void main() {
         if (a < uRender.alphaCutoff) discard;
     }
 #if LINEAR_DEPTH
+    if (uRender.skipEmitter >= 0 && uTriangleEmitter[uRender.firstTriangle + gl_PrimitiveID] == uRender.skipEmitter) discard;
     gl_FragDepth = length(vWorld - uRender.lightPos.xyz) / uRender.shadowFar;
 #endif
 }

@@ -21,7 +21,7 @@ layout(binding = kVCTUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVCTM
 
 float visibility(int i, GPULight l, vec3 p) {
     if (l.info.y == 0) return 1.0;
-    if (l.info.x == kLightPoint) {
+    if (cubeShadow(l.info.x)) {
         vec3 d = p - l.position.xyz;
         return texture(uShadowCube[i], vec4(normalize(d), length(d) / l.shadow.x));
     }
@@ -56,6 +56,19 @@ void main() {
                 E *= lightFalloff(l, dist, dot(-L, l.direction.xyz));
             }
             float c = dot(n, L);
+            if (l.info.x == kLightArea && len > 1e-3 && l.info.w <= kVCTMaxExactTriangles) {
+                // An area light near the voxel: the exact irradiance of its triangles on each side.
+                vec3 ef = vec3(0.0), eb = vec3(0.0);
+                for (int k = 0; k < l.info.w; ++k) {
+                    GPUAreaTriangle tri = uAreaTriangles[l.info.z + k];
+                    ef += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, p, n, l.spot.z != 0.0);
+                    eb += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, p, -n, l.spot.z != 0.0);
+                }
+                float vis = all(equal(ef + eb, vec3(0.0))) ? 0.0 : visibility(i, l, p + L * uVCT.cellSize + (c >= 0.0 ? n : -n) * (0.5 * uVCT.cellSize));
+                front += ef * vis;
+                back += eb * vis;
+                continue;
+            }
             if (all(equal(E, vec3(0.0))) || (len > 1e-3 && abs(c) < 1e-4)) continue;
             vec3 side = c >= 0.0 ? n : -n;
             float vis = visibility(i, l, p + L * uVCT.cellSize + side * (0.5 * uVCT.cellSize));

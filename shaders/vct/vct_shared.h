@@ -31,6 +31,7 @@ GI_CONST int kVCTUnitMipSource = 0;    // mip: the volume read
 GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
 GI_CONST int kVCTUnitLowSpecular = 3;
 GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
+GI_CONST int kVCTMaxExactTriangles = 16;  // inject: area lights of more triangles are lit as points with a cosine lobe
 GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo, normal or emission)
 GI_CONST int kVCTUnitViewRadiance = 2;   // premultiplied radiance + opacity, with mips
 

@@ -21,7 +21,7 @@ layout(binding = kVolumeUnitShadowCube) uniform samplerCubeShadow uShadowCube[kV
 
 float visibility(int i, GPULight l, vec3 x) {
     if (l.info.y == 0) return 1.0;
-    if (l.info.x == kLightPoint) {
+    if (cubeShadow(l.info.x)) {
         vec3 d = x - l.position.xyz;
         return texture(uShadowCube[i], vec4(normalize(d), length(d) / l.shadow.x));
     }

@@ -28,7 +28,9 @@ uint8_t Editor::cameraTools() {
 
 uint8_t Editor::lightsPanel() {
     // Scene lights are shown as they are; the first edit copies them into the preset.
-    std::vector<LightSettings> lights = mPreset.lightsFromScene ? mScene.lights : mPreset.lights;
+    std::vector<LightSettings> lights = mPreset.lightsFromScene ? sceneLights(mScene) : mPreset.lights;
+    if (usesDefaultSun(mPreset, mScene))
+        hintText("no lights and nothing emissive in the scene: lit by a default sun until you add a light");
     uint8_t cost = 0;
     if (mPreset.lightsFromScene) {
         hintText("the scene's own lights (an edit copies them into the preset)");
@@ -40,7 +42,17 @@ uint8_t Editor::lightsPanel() {
     int removed = -1;
     for (size_t i = 0; i < lights.size(); ++i) {
         ImGui::PushID(int(i));
-        if (ImGui::TreeNodeEx("light", ImGuiTreeNodeFlags_DefaultOpen, "light %zu: %s", i, enumName(lights[i].type))) {
+        const LightSettings& l = lights[i];
+        bool area = l.type == LightType::Area && l.emitter >= 0 && l.emitter < int(mScene.emitters.size());
+        std::string title = "light " + std::to_string(i) + ": " + enumName(l.type);
+        if (area) {
+            const Emitter& e = mScene.emitters[size_t(l.emitter)];
+            char buf[160];
+            std::snprintf(buf, sizeof buf, " '%s' (%zu triangles, %.3g m2)", e.name.c_str(), e.triangles.size(), double(e.area));
+            title += buf;
+        }
+        if (!l.enabled) title += " (off)";
+        if (ImGui::TreeNodeEx("light", area ? 0 : ImGuiTreeNodeFlags_DefaultOpen, "%s", title.c_str())) {
             cost |= drawSettings(lights[i]);
             if (ImGui::SmallButton("Remove light")) removed = int(i);
             ImGui::TreePop();
