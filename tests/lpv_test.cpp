@@ -273,6 +273,17 @@ TEST_F(LPVGL, PointLightCubeRSMCarriesTheEmittedFlux) {
                 flux / emitted, covered, texels.size());
     EXPECT_EQ(covered, texels.size()) << "a closed room covers every texel of the cube";
     EXPECT_NEAR(flux / emitted, 1.0, 0.02);
+    // The estimate the budget check uses counts the six faces, once for every cascade, as allocated.
+    size_t rsmBytes = 0;
+    r.render(fs);  // timers report the newest finished frame
+    for (const PassStats& p : r.passStats())
+        if (p.name == "lpv.rsm") rsmBytes = p.memoryBytes;
+    FrameSettings unlit = fs;
+    unlit.lights.clear();
+    EXPECT_EQ(LPV::estimateBytes(fs) - LPV::estimateBytes(unlit), rsmBytes);
+    EXPECT_EQ(rsmBytes, size_t(6) * 128 * 128 * (8 + 8 + 16 + 4));
+    fs.lpv.cascadeCount = unlit.lpv.cascadeCount = 3;
+    EXPECT_EQ(LPV::estimateBytes(fs) - LPV::estimateBytes(unlit), rsmBytes) << "one cube serves every cascade";
 }
 
 // A spot with a 90-degree outer cone at the point light's place, pointing down, emits the same
