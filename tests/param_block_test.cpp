@@ -67,7 +67,7 @@ std::vector<Member> lpvMembers() {
             GI_MEMBER(T, metallic),      GI_MEMBER(T, hasTexture),     GI_MEMBER(T, alphaCutoff),  GI_MEMBER(T, nudge),
             GI_MEMBER(T, fromGBuffer),   GI_MEMBER(T, stride),         GI_MEMBER(T, pixelAngle),   GI_MEMBER(T, blocking),
             GI_MEMBER(T, occlusionStrength), GI_MEMBER(T, cascadeCount), GI_MEMBER(T, intensity),  GI_MEMBER(T, damping),
-            GI_MEMBER(T, pad0),          GI_MEMBER(T, pad1)};
+            GI_MEMBER(T, cubeFace),      GI_MEMBER(T, pad1)};
 }
 
 std::vector<Member> volumeMembers() {

@@ -109,7 +109,7 @@ TEST(RenderCLI, ViewsAndSetOverrides) {
     EXPECT_EQ(stats["settings"]["render"]["shadowMapSize"], 512);
 }
 
-TEST(RenderCLI, LPVViewsAndPointLightNote) {
+TEST(RenderCLI, LPVViewsAndPointLightCube) {
     auto out = test::tempDir();
     auto r = test::runCommand(render(std::string(GI_PRESET_DIR) + "/lpv_basic.json --out " + out.string() +
                                      " --width 96 --height 64 --views --set ssao.enabled=true"));
@@ -123,13 +123,23 @@ TEST(RenderCLI, LPVViewsAndPointLightNote) {
         for (size_t i = 0; i < volume.rgba.size(); i += 4) lit += volume.rgba[i] + volume.rgba[i + 1] + volume.rgba[i + 2] > 30;
         EXPECT_GT(lit, volume.rgba.size() / 4 / 10) << "the LPV volume slice is (nearly) black";
     }
-    // A point light is not injected, and the runner says so.
+    // A point light is injected through its cube RSM: no warning, and its six faces and their
+    // cross are among the views.
     auto dir = test::tempDir();
     std::ofstream(dir / "point.json") << R"({"schemaVersion": 1, "scene": "cornell", "technique": "lpv",
         "lights": [{"type": "point", "position": [0, 1.8, 0], "intensity": 4}]})";
-    auto p = test::runCommand(render((dir / "point.json").string() + " --out " + (dir / "o").string() + " --width 32 --height 32"));
+    auto p = test::runCommand(render((dir / "point.json").string() + " --out " + (dir / "o").string() +
+                                     " --width 32 --height 32 --views --set lpv.rsmResolution=32"));
     ASSERT_EQ(p.exitCode, 0) << p.output;
-    EXPECT_NE(p.output.find("point or area light adds no indirect light"), std::string::npos) << p.output;
+    EXPECT_EQ(p.output.find("no indirect light"), std::string::npos) << p.output;
+    for (int face = 0; face < 6; ++face)
+        for (const char* v : {"lpv.rsmFlux0f", "lpv.rsmNormal0f", "lpv.rsmPosition0f"})
+            EXPECT_TRUE(std::filesystem::exists(dir / "o" / "views" / (v + std::to_string(face) + ".png"))) << v << face;
+    ImageRGBA8 cross = readImage8(dir / "o" / "views" / "lpv.rsmCube0.png");
+    size_t lit = 0;
+    for (size_t i = 0; i < cross.rgba.size(); i += 4) lit += cross.rgba[i] + cross.rgba[i + 1] + cross.rgba[i + 2] > 30;
+    // Six of the cross's twelve cells are faces; the Cornell box fills them but for its open front.
+    EXPECT_GT(lit, cross.rgba.size() / 4 / 4) << "the cube RSM cross is (nearly) black";
 }
 
 TEST(RenderCLI, GLTFInputWithItsCamera) {

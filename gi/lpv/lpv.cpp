@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace gi {
@@ -30,16 +31,32 @@ gl::Buffer zeroBuffer(size_t bytes) {
 void clearBuffer(const gl::Buffer& b) { glClearNamedBufferData(b.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr); }
 
 
-bool hasRSM(const LightSettings& l) { return l.type != LightType::Point && l.type != LightType::Area; }
+// Lights seen through a cube RSM: six 90-degree faces around the light, one cube shared by every
+// cascade. A kind that emits from a point, whatever its intensity profile, belongs here: area
+// lights are seen from their centroid with their cosine lobe (light::lightProfile).
+bool cubeRSM(const LightSettings& l) { return l.type == LightType::Point || l.type == LightType::Area; }
+// Lights the LPV injects: directional and spot lights through one map per cascade, the rest
+// through a cube.
+bool hasRSM(const LightSettings& l) { return l.type == LightType::Directional || l.type == LightType::Spot || cubeRSM(l); }
+// The maps light l needs: 6 cube faces, or one per cascade.
+size_t rsmMaps(const LightSettings& l, int cascadeCount) {
+    return !hasRSM(l) ? 0 : cubeRSM(l) ? size_t(kCubeFaceCount) : size_t(cascadeCount);
+}
 
 }  // namespace
 
 std::string lpvIgnoredLights(const std::vector<LightSettings>& lights) {
-    int points = 0;
-    for (const auto& l : lights) points += !hasRSM(l);
-    if (points == 0) return "";
-    return std::to_string(points) + " point or area light" + (points > 1 ? "s add" : " adds") +
-           " no indirect light: the LPV injects directional and spot lights only (no cube RSM yet)";
+    int ignored = 0;
+    std::string kinds;
+    for (const auto& l : lights) {
+        if (hasRSM(l)) continue;
+        ++ignored;
+        std::string kind = enumName(l.type);
+        if (kinds.find(kind) == std::string::npos) kinds += (kinds.empty() ? "" : ", ") + kind;
+    }
+    if (ignored == 0) return "";
+    return std::to_string(ignored) + " light" + (ignored > 1 ? "s add" : " adds") + " no indirect light: the LPV has no RSM for " +
+           kinds + " lights";
 }
 
 std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
@@ -93,9 +110,9 @@ size_t LPV::estimateBytes(const FrameSettings& fs) {
                         + 3 * cells(s.gridResolution) * 8                 // SH textures
                         + 2 * corners(s.gridResolution) * 8               // geometry textures
                         + cells(s.gridResolution) * 32;                   // face transmittance
-    size_t rsmLights = 0;
-    for (const auto& l : fs.lights) rsmLights += hasRSM(l);
-    size_t rsm = rsmLights * size_t(s.cascadeCount) * size_t(s.rsmResolution) * s.rsmResolution * kRSMBytesPerTexel;
+    size_t maps = 0;
+    for (const auto& l : fs.lights) maps += rsmMaps(l, s.cascadeCount);
+    size_t rsm = maps * size_t(s.rsmResolution) * s.rsmResolution * kRSMBytesPerTexel;
     return perCascade * size_t(s.cascadeCount) + rsm;
 }
 
@@ -104,7 +121,7 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
     if (!any(Cost(changes), Cost::Reallocate)) return;
     const LPVSettings& s = fs.lpv;
     size_t rsmCount = 0;
-    for (const auto& l : fs.lights) rsmCount += hasRSM(l) ? size_t(s.cascadeCount) : 0;
+    for (const auto& l : fs.lights) rsmCount += rsmMaps(l, s.cascadeCount);
     {
         mResolution = s.gridResolution;
         mCascadeData.clear();
@@ -179,15 +196,56 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mRSMResolution, mRSMResolution);
     mRSMProg.use();
+    // Draws the scene into map m, with the light's entry li in the light buffer.
+    auto draw = [&](RSM& m, size_t li) {
+        glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
+        const float zero[4] = {0, 0, 0, 0};
+        for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
+        // The material changes per draw, so each draw uploads the block.
+        ctx.scene.draw([&](const Material& mat, int) {
+            LPVParams p{};
+            p.lightViewProj = m.viewProj;
+            p.lightIndex = int(li);
+            p.texelArea = m.texelArea;
+            p.texelSolidAngle = m.texelSolidAngle;
+            p.cubeFace = m.face >= 0 ? 1 : 0;
+            p.baseColor = mat.baseColor;
+            p.metallic = mat.metallic;
+            p.hasTexture = mat.baseColorTexture >= 0 ? 1 : 0;
+            p.alphaCutoff = mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f;
+            mBlock.set(p);
+            if (mat.baseColorTexture >= 0) glBindTextureUnit(kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
+        });
+    };
     size_t index = 0;
     for (size_t li = 0; li < fs.lights.size(); ++li) {
         const LightSettings& l = fs.lights[li];
         if (!hasRSM(l)) continue;
+        if (cubeRSM(l)) {
+            // One cube for every cascade: its faces depend on the light and the scene, not on the
+            // cascade box. Not cut at the range, like the spot's frustum below.
+            float far = glm::length(l.position - bounds.center()) + sceneRadius;
+            float t = light::cubeTexel(mRSMResolution);
+            for (int face = 0; face < kCubeFaceCount; ++face, ++index) {
+                RSM& m = mRSMs[index];
+                m.light = int(li);
+                m.cascade = -1;
+                m.face = face;
+                m.viewProj = cubeFaceViewProj(l.position, face, far);
+                m.texelArea = 0.0f;
+                m.texelSolidAngle = t * t;
+                draw(m, li);
+            }
+            continue;
+        }
         glm::vec3 dir = light::lightDirection(l.direction);
         for (size_t k = 0; k < mBoxes.size(); ++k, ++index) {
             RSM& m = mRSMs[index];
             m.light = int(li);
             m.cascade = int(k);
+            m.face = -1;
             const CascadeBox& box = mBoxes[k];
             if (l.type == LightType::Directional) {
                 // The seed's fit: the extent of the cascade's corners projected on the light's plane.
@@ -214,25 +272,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
                 m.texelArea = 0.0f;
                 m.texelSolidAngle = t * t;
             }
-            glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
-            const float zero[4] = {0, 0, 0, 0};
-            for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
-            const float one = 1.0f;
-            glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
-            // The material changes per draw, so each draw uploads the block.
-            ctx.scene.draw([&](const Material& mat, int) {
-                LPVParams p{};
-                p.lightViewProj = m.viewProj;
-                p.lightIndex = int(li);
-                p.texelArea = m.texelArea;
-                p.texelSolidAngle = m.texelSolidAngle;
-                p.baseColor = mat.baseColor;
-                p.metallic = mat.metallic;
-                p.hasTexture = mat.baseColorTexture >= 0 ? 1 : 0;
-                p.alphaCutoff = mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f;
-                mBlock.set(p);
-                if (mat.baseColorTexture >= 0) glBindTextureUnit(kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
-            });
+            draw(m, li);
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -244,18 +284,20 @@ void LPV::inject(const FrameContext& ctx) {
     for (auto& c : mCascadeData) clearBuffer(c.inject);
     mInjectProg.use();
     for (const RSM& m : mRSMs) {
-        const CascadeBox& box = mBoxes[m.cascade];
-        LPVParams p{};
-        p.resolution = mResolution;
-        p.width = p.height = mRSMResolution;
-        p.gridMinCell = glm::vec4(box.min, box.cellSize);
-        p.nudge = s.nudge;
-        mBlock.set(p);
         glBindImageTexture(kLPVImageFlux, m.flux.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferInject, mCascadeData[m.cascade].inject.id());
-        glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+        for (size_t k = 0; k < mBoxes.size(); ++k) {
+            if (!m.feeds(k)) continue;
+            LPVParams p{};
+            p.resolution = mResolution;
+            p.width = p.height = mRSMResolution;
+            p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
+            p.nudge = s.nudge;
+            mBlock.set(p);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferInject, mCascadeData[k].inject.id());
+            glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+        }
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -277,17 +319,19 @@ void LPV::buildGeometry(const FrameContext& ctx) {
     mGeometryProg.use();
     // Surfels from the RSMs.
     for (const RSM& m : mRSMs) {
-        const CascadeBox& box = mBoxes[m.cascade];
-        LPVParams p{};
-        p.resolution = mResolution;
-        p.fromGBuffer = 0;
-        p.width = p.height = mRSMResolution;
-        p.gridMinCell = glm::vec4(box.min, box.cellSize);
-        mBlock.set(p);
         glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[m.cascade].geometryRSM.id());
-        glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+        for (size_t k = 0; k < mBoxes.size(); ++k) {
+            if (!m.feeds(k)) continue;
+            LPVParams p{};
+            p.resolution = mResolution;
+            p.fromGBuffer = 0;
+            p.width = p.height = mRSMResolution;
+            p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
+            mBlock.set(p);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryRSM.id());
+            glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+        }
     }
     // Surfels from the camera's G-buffer, subsampled to about 128 x 128 samples.
     int stride = std::max(1, std::max(ctx.width, ctx.height) / 128);
@@ -423,7 +467,8 @@ void LPV::shade(const FrameContext& ctx) {
 std::vector<DebugView> LPV::debugViews() const {
     std::vector<DebugView> v;
     for (const RSM& m : mRSMs) {
-        std::string suffix = std::to_string(m.light) + "c" + std::to_string(m.cascade);
+        // lpv.rsmFlux<light>c<cascade>, or lpv.rsmFlux<light>f<face> for a cube's faces.
+        std::string suffix = std::to_string(m.light) + (m.face >= 0 ? "f" + std::to_string(m.face) : "c" + std::to_string(m.cascade));
         int n = mRSMResolution;
         v.push_back({"lpv.rsmFlux" + suffix, m.flux.id(), GL_TEXTURE_2D, kViewColor, n, n, 0, 1, 1});
         v.push_back({"lpv.rsmNormal" + suffix, m.normal.id(), GL_TEXTURE_2D, kViewNormal, n, n, 0, 1, 1});
@@ -456,7 +501,7 @@ std::vector<std::string> LPV::passNames(const FrameSettings&) const {
     return {"lpv.rsm", "lpv.inject", "lpv.geometry", "lpv.propagate", "lpv.shade"};
 }
 
-std::vector<Previewer> LPV::previewers(const FrameSettings&) const {
+std::vector<Previewer> LPV::previewers(const FrameSettings& fs) const {
     auto boxes = [](const PreviewContext& ctx) {
         std::vector<GlyphLine> lines;
         if (!ctx.sceneBounds.valid()) return lines;
@@ -473,7 +518,40 @@ std::vector<Previewer> LPV::previewers(const FrameSettings&) const {
         }
         return lines;
     };
-    return {{"lpv.cascades", "The cascades' boxes: each grid's extent in the scene", {}, boxes}};
+    std::vector<Previewer> out{{"lpv.cascades", "The cascades' boxes: each grid's extent in the scene", {}, boxes}};
+    for (size_t li = 0; li < fs.lights.size(); ++li) {
+        if (!cubeRSM(fs.lights[li])) continue;
+        // The six flux faces of light li's cube RSM as the cross the cube views use (view.frag's
+        // cubeCross): -X +Z +X -Z in the middle row, +Y above +Z, -Y below, each face with s to
+        // the right and t downwards.
+        auto cross = [li](const PreviewContext& ctx) {
+            constexpr int n = 128;
+            const int cells[kCubeFaceCount][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};  // column, row from the top
+            PreviewImage img;
+            for (int face = 0; face < kCubeFaceCount; ++face) {
+                std::string name = "lpv.rsmFlux" + std::to_string(li) + "f" + std::to_string(face);
+                auto it = std::find_if(ctx.views.begin(), ctx.views.end(), [&](const DebugView& v) { return v.name == name; });
+                if (it == ctx.views.end() || !ctx.renderView) return PreviewImage{};
+                if (img.width == 0) {
+                    img.width = 4 * n;
+                    img.height = 3 * n;
+                    img.rgba.assign(size_t(img.width) * img.height * 4, 0);
+                    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+                }
+                std::vector<uint8_t> faceImage = ctx.renderView(*it, n, n);
+                // Face row r (bottom row first) holds t = r / n, which the cross shows r rows below the cell's top.
+                for (int r = 0; r < n; ++r) {
+                    int row = img.height - 1 - (cells[face][1] * n + r);
+                    std::copy_n(faceImage.begin() + size_t(r) * n * 4, size_t(n) * 4,
+                                img.rgba.begin() + (size_t(row) * img.width + size_t(cells[face][0]) * n) * 4);
+                }
+            }
+            return img;
+        };
+        out.push_back({"lpv.rsmCube" + std::to_string(li), "Light " + std::to_string(li) +
+                       "'s cube RSM: the flux of its six faces as a cross", cross, {}});
+    }
+    return out;
 }
 
 std::unique_ptr<Pass> LPVSettings::createPass() { return std::make_unique<LPV>(); }

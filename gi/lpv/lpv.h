@@ -2,11 +2,14 @@
 // implements them, with compute shaders throughout.
 //
 // Passes, per cascade (timer names in brackets):
-//   1. RSMs [lpv.rsm]: per directional or spot light, a reflective shadow map storing world
-//      position, normal and flux. Directional maps are fitted to the cascade box as the seed
-//      does (the extent of the box's corners projected on the plane normal to the light); a
-//      spot light uses its own frustum. Point lights are left out: a cube RSM is future work;
-//      lpvIgnoredLights() names them so gi-render and the editor say so.
+//   1. RSMs [lpv.rsm]: per directional or spot light and cascade, a reflective shadow map storing
+//      world position, normal and flux. Directional maps are fitted to the cascade box as the
+//      seed does (the extent of the box's corners projected on the plane normal to the light); a
+//      spot light uses its own frustum. A point light has a cube RSM: six 90-degree faces in GL's
+//      cube order, each a map like the spot's, rendered once and injected into every cascade
+//      (its faces depend on the light and the scene's bounds, not on the cascade box, so a cube
+//      per cascade would draw the same texels again). lpvIgnoredLights() names any light kind
+//      without an RSM, so gi-render and the editor say so (none today).
 //   2. Injection [lpv.inject]: each RSM texel becomes a virtual point light, moved `nudge`
 //      cells along its normal, added to its cell as intensity I(w) = flux / pi * max(n.w, 0)
 //      projected on 2-band SH, one SH per colour channel.
@@ -30,8 +33,15 @@
 //
 // Choices where the seed is silent (documented and tested):
 //   - Flux per RSM texel is physical: albedo * light * projected texel area (directional) or
-//     albedo * intensity * texel solid angle (spot), so the result does not depend on the RSM
-//     size. The seed's weight lpvRes^2 / (rsmW * rsmH) is not used; `intensity` scales the result.
+//     albedo * intensity * texel solid angle (spot, cube faces), so the result does not depend on
+//     the RSM size. The intensity towards a texel is the light model's color * lightProfile(l,
+//     dist, cosAxis) (common/light.h) for every kind, so a kind whose intensity varies with
+//     direction needs no code here beyond joining cubeRSM(). A texel's solid angle is the
+//     standard dA cos^3 / d^2 form: (2 tan(fov/2) / size)^2 * cos^3 of the angle between the
+//     texel's direction and the map's axis (the spot's, or the cube face's). Over a whole cube it
+//     sums to 4 pi within 1e-3 at 16^2 texels a face, 1.5e-5 at 128^2. The exact form (sums of
+//     atan(xy / sqrt(1 + x^2 + y^2)) at the texel's corners) subtracts nearly equal angles, which
+//     float does poorly for large maps. The seed's weight lpvRes^2 / (rsmW * rsmH) is not used; `intensity` scales the result.
 //   - Float atomics are emulated with atomicCompSwap on a uint SSBO (exact under contention).
 //   - Cascades: with cascadeExtent 0 and one cascade, the grid is the scene's bounding cube;
 //     with several, the finest spans the scene's largest side / 2^(count-1), all centred on the
@@ -60,7 +70,7 @@ struct CascadeBox {
     glm::vec3 center() const { return min + glm::vec3(0.5f * extent); }
 };
 
-// Lights the LPV does not inject (point lights: no cube RSM yet), as a one-line note, or "".
+// Lights the LPV does not inject (kinds it has no RSM for; none today), as a one-line note, or "".
 std::string lpvIgnoredLights(const std::vector<LightSettings>& lights);
 
 // The cascade boxes for a frame (exposed for tests and the editor's overlay).
@@ -76,7 +86,8 @@ public:
 
     void indirect(FrameContext& ctx) override;
     std::vector<DebugView> debugViews() const override;
-    // lpv.cascades: each cascade's box over the image.
+    // lpv.cascades: each cascade's box over the image; lpv.rsmCube<light>: a point light's cube
+    // RSM flux as a cross (its faces are also the debug views lpv.rsm*<light>f<face>).
     std::vector<Previewer> previewers(const FrameSettings& fs) const override;
     size_t passMemory(const std::string& pass) const override;
     size_t memoryBytes() const override;
@@ -96,8 +107,11 @@ private:
         gl::Framebuffer fbo;
         glm::mat4 viewProj{1.0f};
         float texelArea = 0.0f;  // directional: projected world area of a texel
-        float texelSolidAngle = 0.0f;  // spot: solid angle of a centre texel
-        int light = 0, cascade = 0;
+        float texelSolidAngle = 0.0f;  // spot, cube face: solid angle of a centre texel
+        int light = 0;
+        int cascade = 0;  // the cascade it feeds; -1: every cascade (a cube's faces)
+        int face = -1;    // a point light's cube face (+X, -X, +Y, -Y, +Z, -Z), or -1
+        bool feeds(size_t k) const { return cascade < 0 || size_t(cascade) == k; }
     };
     struct Cascade {
         gl::Buffer inject, ping, pong, accum, geometryRSM, geometryGBuffer, transmit;

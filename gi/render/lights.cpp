@@ -36,6 +36,14 @@ glm::mat4 spotViewProj(const glm::vec3& position, const glm::vec3& dir, float fo
     return proj * view;
 }
 
+glm::mat4 cubeFaceViewProj(const glm::vec3& position, int face, float far) {
+    // Face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
+    static const glm::vec3 dirs[kCubeFaceCount] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const glm::vec3 ups[kCubeFaceCount] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, far * light::kShadowNearRatio, far);
+    return proj * glm::lookAt(position, position + dirs[face], ups[face]);
+}
+
 void setShadowProjection(light::GPULight& g, const LightSettings& l, const Bounds& b, int size) {
     glm::vec3 center = b.center();
     float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);

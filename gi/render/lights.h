@@ -34,6 +34,12 @@ void setShadowProjection(light::GPULight& g, const LightSettings& l, const Bound
 // `position` looking along unit `dir`, with field of view fovDeg, reaching `far`.
 glm::mat4 spotViewProj(const glm::vec3& position, const glm::vec3& dir, float fovDeg, float far);
 
+// A point light's cube faces, in GL's order (+X, -X, +Y, -Y, +Z, -Z).
+inline constexpr int kCubeFaceCount = 6;
+// World to clip space of face `face` of a cube map (shadow map or RSM) centred on `position`,
+// 90 degrees wide, reaching `far`, oriented as GL samples cube maps.
+glm::mat4 cubeFaceViewProj(const glm::vec3& position, int face, float far);
+
 // Binds entry i of a pass's light batch's shadow map, when it has one, to unit2D + i or
 // unitCube + i as its type needs; samplers are the caller's.
 void bindBatchShadowMap(int i, const ShadowMapView& sm, GLuint unit2D, GLuint unitCube);

@@ -325,14 +325,10 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             params.shadowFar = far;
             // An area light's own surface, through whose middle the map looks, casts no shadow.
             params.skipEmitter = l.type == LightType::Area ? l.emitter : -1;
-            // Cube face orientations as GL defines them (+X, -X, +Y, -Y, +Z, -Z).
-            const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-            const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-            glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, far * light::kShadowNearRatio, far);
-            for (int face = 0; face < 6; ++face) {
+            for (int face = 0; face < kCubeFaceCount; ++face) {
                 glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
                 glClear(GL_DEPTH_BUFFER_BIT);
-                params.viewProj = proj * glm::lookAt(l.position, l.position + dirs[face], ups[face]);
+                params.viewProj = cubeFaceViewProj(l.position, face, far);
                 drawScene(params);
             }
         } else {

@@ -80,7 +80,7 @@ struct LPVParams {
     // rsm
     int lightIndex;    // the light's entry in the light buffer
     float texelArea;   // directional: projected world area of a texel
-    float texelSolidAngle;  // spot: solid angle of the map's centre texel
+    float texelSolidAngle;  // spot, cube face: solid angle of the map's centre texel
     float metallic;
     int hasTexture;    // 1: multiply baseColor by the base colour texture
     float alphaCutoff; // alpha-masked materials; -1 keeps every fragment
@@ -98,7 +98,8 @@ struct LPVParams {
     int cascadeCount;
     float intensity;
     float damping;     // self-illumination damping, 0 .. 1
-    float pad0;
+    // rsm
+    int cubeFace;      // 1: a face of a point light's cube RSM (texel solid angles off the face's axis)
     float pad1;
 };
 

@@ -1,7 +1,9 @@
 // Reflective shadow map texel: world position (w: the surfel's world area), normal facing the
 // light, and the flux the surfel reflects diffusely: albedo * light * projected texel area
-// (directional) or albedo * intensity * texel solid angle (spot), so the total does not depend
-// on the map's resolution. The light is entry lightIndex of the frame's light buffer.
+// (directional) or albedo * intensity * texel solid angle (spot, and each face of a point light's
+// cube), so the total does not depend on the map's resolution. The intensity towards the texel
+// is the light model's, color * lightProfile(l, dist, cosAxis), whatever the light's kind. The
+// light is entry lightIndex of the frame's light buffer.
 #include "common/light.h"
 #include "common/material.glsl"
 #include "lpv/lpv_shared.h"
@@ -32,9 +34,12 @@ void main() {
         vec3 toLight = l.position.xyz - vWorld;
         float d = length(toLight);
         L = toLight / d;
-        // A texel's solid angle shrinks with cos^3 of its angle off the axis.
+        // A texel's solid angle shrinks with cos^3 of its angle off the map's axis (dA cos^3 / 1):
+        // the spot's axis, or a cube face's, whose cosine is the largest component of |L| since
+        // a face sees exactly the directions along which its axis dominates.
         float cosAxis = dot(-L, l.direction.xyz);
-        float solidAngle = uLPV.texelSolidAngle * cosAxis * cosAxis * cosAxis;
+        float cosMap = uLPV.cubeFace != 0 ? max(abs(L.x), max(abs(L.y), abs(L.z))) : cosAxis;
+        float solidAngle = uLPV.texelSolidAngle * cosMap * cosMap * cosMap;
         flux = l.color.rgb * lightProfile(l, d, cosAxis) * solidAngle;
         area = solidAngle * d * d;
     }
