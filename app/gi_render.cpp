@@ -276,8 +276,8 @@ int run(int argc, char** argv) {
             gi::Metrics m = gi::scoreRender(in);
             stats["metrics"] = gi::metricsToJson(m);
             gi::writeRenderScoreMaps(out, in);
-            std::printf("  score: ssim %.4f  score %.3f  rmse %.4f  psnr %.2f dB  leak %.4f (energy %.4f)\n", m.ssim,
-                        m.score, m.rmse, m.psnr, m.leakFraction, m.leakEnergy);
+            std::printf("  score: ssim %.4f  score %.3g  rmse %.4f  psnr %.2f dB  leak %.4f (energy %.4f)  brightness %.3f\n",
+                        m.ssim, m.score, m.rmse, m.psnr, m.leakFraction, m.leakEnergy, m.brightness);
         }
     }
     gi::writeFileAtomic(out / "stats.json", stats.dump(2) + "\n");

@@ -484,5 +484,24 @@ TEST_F(EnvironmentGL, MissingMapFailsWithItsName) {
     }
 }
 
+// A technique that does not gather the environment says so; technique none, which does, and an
+// environment switched off or scaled to nothing say nothing.
+TEST(Environment, TechniquesThatDoNotGatherItSaySo) {
+    FrameSettings fs;
+    fs.environment.enabled = true;
+    for (const char* t : {"lpv", "vct"}) {
+        fs.technique = t;
+        EXPECT_NE(EnvironmentSettings::notes(fs).find(std::string("technique ") + t), std::string::npos) << t;
+    }
+    fs.technique = "none";
+    EXPECT_EQ(EnvironmentSettings::notes(fs), "");
+    fs.technique = "vct";
+    fs.environment.intensity = 0.0f;
+    EXPECT_EQ(EnvironmentSettings::notes(fs), "");
+    fs.environment.intensity = 1.0f;
+    fs.environment.enabled = false;
+    EXPECT_EQ(EnvironmentSettings::notes(fs), "");
+}
+
 }  // namespace
 }  // namespace gi

@@ -68,6 +68,8 @@ TEST_P(ImageTest, MeetsThePresetsBoundsAgainstTheReference) {
                 m.leakEnergy);
     EXPECT_GE(m.ssim, preset.quality.minSSIM);
     EXPECT_LE(m.leakFraction, preset.quality.maxLeakFraction);
+    std::printf("brightness %.3f of the reference (bound: within %.2f)\n", m.brightness, preset.quality.maxBrightnessError);
+    EXPECT_LE(std::abs(m.brightness - 1.0), preset.quality.maxBrightnessError);
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, ImageTest, ::testing::ValuesIn(loadCases()), [](const auto& info) {

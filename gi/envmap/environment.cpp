@@ -427,4 +427,13 @@ bool Environment::reloadShaders(std::string& log) {
     return ok;
 }
 
+// The environment lights the scene through technique none's indirect term only: LPV and VCT do
+// not gather it yet, so with them it is the sky and nothing more (the reference still lights
+// with it).
+std::string EnvironmentSettings::notes(const FrameSettings& fs) {
+    if (!fs.environment.enabled || fs.environment.intensity <= 0.0f || fs.technique == TechniqueChoice::kNone) return "";
+    return "the environment map lights the scene with technique none only: technique " + fs.technique +
+           " adds no sky light (it is drawn as the sky)";
+}
+
 }  // namespace gi

@@ -25,6 +25,7 @@ struct EnvironmentSettings {
     static std::unique_ptr<Pass> createPass();
     static size_t estimateBytes(const FrameSettings& fs);
     static void checkTime(const FrameSettings& fs);
+    static std::string notes(const FrameSettings& fs);
     bool enabled = false;          // light the scene from the environment map and draw it as the sky
     // An equirectangular (latlong) .hdr/.exr/.png, a six-face cube map as a pattern with "{face}"
     // (replaced by px nx py ny pz nz), or a built-in: "builtin:sky" (a gradient sky with a sun) or

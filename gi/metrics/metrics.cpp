@@ -206,12 +206,18 @@ LeakResult computeLeak(const ImageRGB& techniqueIndirect, const ImageRGB& refere
     return result;
 }
 
+double brightnessRatio(const ImageRGB& image, const ImageRGB& reference) {
+    double ref = meanLuminance(reference);
+    return ref > 0.0 ? meanLuminance(image) / ref : 0.0;
+}
+
 Metrics compareImages(const ImageRGB& image, const ImageRGB& reference, const SSIMOptions& options) {
     requireSameSize(image, reference);
     Metrics m;
     SSIMResult s = computeSSIM(encodeSRGB8(image), encodeSRGB8(reference), image.width, image.height, options);
     m.ssim = s.ssim;
     m.score = seedScore(s.ssim);
+    m.brightness = brightnessRatio(image, reference);
     m.rmse = rmse(image, reference);
     m.psnr = psnr(image, reference);
     LeakResult leak = computeLeak(image, reference);
@@ -224,7 +230,8 @@ json metricsToJson(const Metrics& m) {
     double psnrValue = std::isfinite(m.psnr) ? std::min(m.psnr, kPSNRCap) : kPSNRCap;
     return json{{"ssim", m.ssim},       {"score", m.score},
                 {"rmse", m.rmse},       {"psnr", psnrValue},
-                {"leakFraction", m.leakFraction}, {"leakEnergy", m.leakEnergy}};
+                {"leakFraction", m.leakFraction}, {"leakEnergy", m.leakEnergy},
+                {"brightness", m.brightness}};
 }
 
 void writeMetricMaps(const std::filesystem::path& dir, const ImageRGB& image, const ImageRGB& reference,
@@ -248,6 +255,7 @@ Metrics scoreRender(const RenderScoreInputs& in, const SSIMOptions& options) {
     std::vector<uint8_t> b = encodeSRGB8(toneMapped(*in.reference, in.toneMap));
     m.ssim = computeSSIM(a, b, in.image->width, in.image->height, options).ssim;
     m.score = seedScore(m.ssim);
+    m.brightness = brightnessRatio(*in.image, *in.reference);
     m.rmse = rmse(*in.image, *in.reference);
     m.psnr = psnr(*in.image, *in.reference);
     if (in.indirect && in.referenceIndirect) {

@@ -146,12 +146,16 @@ struct Metrics {
     double psnr = 0;          // may be infinite; metricsToJson caps it at kPSNRCap
     double leakFraction = 0;
     double leakEnergy = 0;
+    double brightness = 0;    // mean linear luminance of the image over the reference's (1: as bright)
 };
+
+// Mean luminance of `image` over that of `reference` (0 when the reference is black).
+double brightnessRatio(const ImageRGB& image, const ImageRGB& reference);
 
 // Every metric; the leak measure treats the two images as indirect images. Sizes must match.
 Metrics compareImages(const ImageRGB& image, const ImageRGB& reference, const SSIMOptions& options = {});
 
-// Keys ssim, score, rmse, psnr, leakFraction, leakEnergy.
+// Keys ssim, score, rmse, psnr, leakFraction, leakEnergy, brightness.
 json metricsToJson(const Metrics& metrics);
 
 // Writes DIR/ssim_map.png, DIR/heat_map.png and DIR/leak_map.png (DIR is created). heatScale 0

@@ -31,11 +31,13 @@ struct QualitySettings {
     static constexpr std::string_view kSection = "quality";
     float minSSIM = 0.0f;           // the SSIM the render must reach against the full reference
     float maxLeakFraction = 1.0f;   // the largest fraction of leak pixels allowed
+    float maxBrightnessError = 100.0f;  // the largest |mean luminance / the reference's - 1| allowed
 
     template <class V>
     void visit(V&& v) {
         v(minSSIM, {"minSSIM", "SSIM the preset must reach against the path-traced reference (tests check it)", "", -1, 1});
         v(maxLeakFraction, {"maxLeakFraction", "Largest fraction of pixels allowed to leak light", "", 0, 1});
+        v(maxBrightnessError, {"maxBrightnessError", "Largest relative error of the mean brightness against the reference", "", 0, 100});
     }
 };
 
