@@ -53,8 +53,9 @@
 //     their exact polygon irradiance to the voxels they light, as for any light. Their own
 //     surfaces are not stored as glowing voxels: the raster's light pass already shades their
 //     direct light, and glowing voxels made the cones gather it a second time (CornellBox-
-//     Original at 1.65x the reference). A cone that looks at a lamp sees the light falling on
-//     the lamp's surface times its albedo, not its emission.
+//     Original at 256x256 with them: 2.3x the reference's mean luminance, SSIM 0.65; without:
+//     0.92x, SSIM 0.71). A cone that looks at a lamp sees the light falling on the lamp's
+//     surface times its albedo, not its emission.
 // Known artefacts: light leaks through walls thinner than a voxel (isotropic voxels radiate to
 // both sides), colour mixing in coarse isotropic mips, self-occlusion at small nudges, thin
 // geometry lost at coarse mips.
