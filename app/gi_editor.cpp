@@ -28,7 +28,7 @@ int run(int argc, char** argv) {
     app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(64, 16384));
     app.add_option("--view", options.view, "Debug view the buffer previewer shows first (e.g. depth, shadow0)");
     app.add_option("--voxel-view", options.voxelView, "VCT: show the voxels in the viewport, coloured by this")
-        ->check(CLI::IsMember({"albedo", "normal", "emission", "radiance"}));
+        ->check(CLI::IsMember({"albedo", "normal", "radiance"}));
     app.add_flag("--voxel-window", options.voxelWindow, "VCT: with --voxel-view, show it in a window instead of the viewport");
     bool noCones = false;
     app.add_flag("--no-cones", noCones, "VCT: do not draw the cone set at the picked pixel (at first the centre)");

@@ -97,10 +97,9 @@ std::vector<Member> renderMembers() {
 std::vector<Member> vctMembers() {
     using T = vct::VCTParams;
     return {GI_MEMBER(T, gridMin),       GI_MEMBER(T, wrapOffset),   GI_MEMBER(T, clipMin),       GI_MEMBER(T, clipMax),
-            GI_MEMBER(T, resolution),    GI_MEMBER(T, cellSize),     GI_MEMBER(T, emissionScale), GI_MEMBER(T, emissionRange),
-            GI_MEMBER(T, baseColor),     GI_MEMBER(T, emissive),     GI_MEMBER(T, hasTexture),    GI_MEMBER(T, alphaCutoff),
-            GI_MEMBER(T, metallic),      GI_MEMBER(T, pad0),         GI_MEMBER(T, lightFirst),    GI_MEMBER(T, lightCount),
-            GI_MEMBER(T, accumulate),    GI_MEMBER(T, sh),           GI_MEMBER(T, destSize),      GI_MEMBER(T, sourceLevel),
+            GI_MEMBER(T, resolution),    GI_MEMBER(T, cellSize),     GI_MEMBER(T, hasTexture),    GI_MEMBER(T, alphaCutoff),
+            GI_MEMBER(T, baseColor),     GI_MEMBER(T, metallic),     GI_MEMBER(T, lightFirst),    GI_MEMBER(T, lightCount),
+            GI_MEMBER(T, accumulate),    GI_MEMBER(T, destSize),     GI_MEMBER(T, sourceLevel),
             GI_MEMBER(T, direction),     GI_MEMBER(T, sourceOffsetX), GI_MEMBER(T, destOffsetX),  GI_MEMBER(T, coneCount),
             GI_MEMBER(T, tanHalf),       GI_MEMBER(T, maxDistance),  GI_MEMBER(T, occlusionDistance), GI_MEMBER(T, levelCount),
             GI_MEMBER(T, maxLod),        GI_MEMBER(T, nudge),        GI_MEMBER(T, stepMultiplier), GI_MEMBER(T, cones),
@@ -108,7 +107,7 @@ std::vector<Member> vctMembers() {
             GI_MEMBER(T, imageSize),     GI_MEMBER(T, toFull),       GI_MEMBER(T, specularAperture), GI_MEMBER(T, vao),
             GI_MEMBER(T, vaoStrength),   GI_MEMBER(T, intensity),    GI_MEMBER(T, specularCone),  GI_MEMBER(T, nearPlane),
             GI_MEMBER(T, farPlane),      GI_MEMBER(T, exposureScale), GI_MEMBER(T, opacityThreshold), GI_MEMBER(T, viewSource),
-            GI_MEMBER(T, viewMip),       GI_MEMBER(T, edges),        GI_MEMBER(T, pad1),          GI_MEMBER(T, background)};
+            GI_MEMBER(T, viewMip),       GI_MEMBER(T, edges),        GI_MEMBER(T, sh),          GI_MEMBER(T, background)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per

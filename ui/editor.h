@@ -28,7 +28,7 @@ struct EditorOptions {
     int height = 720;
     std::string reference;         // non-empty: the Reference panel starts on, in this view (live, split, ...)
     int referenceSPP = 0;          // > 0: overrides the preset's reference.spp
-    std::string voxelView;         // VCT: albedo, normal, emission or radiance shows that voxel view in the viewport
+    std::string voxelView;         // VCT: albedo, normal or radiance shows that voxel view in the viewport
     bool voxelWindow = false;      // the voxel view in its own window instead of the viewport
     bool coneOverlay = true;       // VCT: the cone set at the picked pixel (at first the centre) over the viewport
     std::vector<std::string> previewers;  // previewers (gi-render --views names) shown from the start

@@ -17,7 +17,7 @@ namespace {
 // colour, no alpha, so the packed float format at half RGBA16F's size (5-6 bit mantissas, about
 // 3% steps, far below the voxelization's own error).
 constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;
-constexpr size_t kVoxelBytes = 3 * 4 + 2 * 4;  // albedo, normal, emission (r32ui); exit front/back (R11F_G11F_B10F)
+constexpr size_t kVoxelBytes = 2 * 4 + 2 * 4;  // albedo, normal (r32ui); exit front/back (R11F_G11F_B10F)
 
 size_t voxels(int res) { return size_t(res) * res * res; }
 
@@ -141,11 +141,10 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
         Level l;
         l.albedo = gl::Texture::create3D(GL_R32UI, r, r, r);
         l.normal = gl::Texture::create3D(GL_R32UI, r, r, r);
-        l.emission = gl::Texture::create3D(GL_R32UI, r, r, r);
         l.exitFront = gl::Texture::create3D(kExitFormat, r, r, r);
         l.exitBack = gl::Texture::create3D(kExitFormat, r, r, r);
         l.radiance = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
-        mVoxelBytes += l.albedo.bytes() * 3 + l.exitFront.bytes() * 2;
+        mVoxelBytes += l.albedo.bytes() * 2 + l.exitFront.bytes() * 2;
         mRadianceBytes += l.radiance.bytes();
         mLevels.push_back(std::move(l));
     }
@@ -197,7 +196,6 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
     mBlock.set(p);
     glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageEmission, level.emission.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
     glDispatchCompute(g, g, g);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -209,10 +207,8 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     mVoxelizeProg.use();
-    p.emissionScale = 1.0f / mEmissionRange;
     glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageEmission, level.emission.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindSampler(shared::kUnitBaseColor, mRepeat.id());
     ctx.scene.draw([&](const Material& m, int) {
         vct::VCTParams draw = p;
@@ -220,7 +216,6 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
         draw.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
         draw.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
         draw.metallic = m.metallic;
-        draw.emissive = glm::vec4(m.emissive, 0.0f);
         mBlock.set(draw);
         if (m.baseColorTexture >= 0) glBindTextureUnit(shared::kUnitBaseColor, ctx.scene.texture(m.baseColorTexture));
     });
@@ -238,12 +233,7 @@ void VCT::updateGrids(const FrameContext& ctx) {
     const Bounds& b = ctx.scene.bounds();
     std::vector<VoxelBox> boxes = vctLevels(ctx.settings.vct, b.min, b.max, ctx.settings.camera.eye);
     bool newScene = ctx.scene.id() != mSceneId;
-    if (newScene) {
-        mSceneId = ctx.scene.id();
-        mEmissionRange = 1e-6f;
-        for (const Material& m : ctx.scene.materials())
-            mEmissionRange = std::max(mEmissionRange, std::max(m.emissive.x, std::max(m.emissive.y, m.emissive.z)));
-    }
+    if (newScene) mSceneId = ctx.scene.id();
     const int r = mResolution;
     for (size_t k = 0; k < mLevels.size(); ++k) {
         Level& l = mLevels[k];
@@ -279,12 +269,10 @@ void VCT::inject(const FrameContext& ctx) {
     mInjectProg.use();
     for (Level& l : mLevels) {
         bindVoxelImages(l, GL_READ_WRITE);
-        glBindImageTexture(vct::kVCTImageEmission, l.emission.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         size_t first = 0;
         do {
             int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
             vct::VCTParams p = gridParams(l);
-            p.emissionRange = mEmissionRange;
             p.lightFirst = int(first);
             p.lightCount = count;
             p.accumulate = first > 0 ? 1 : 0;
@@ -511,7 +499,6 @@ std::vector<DebugView> VCT::debugViews() const {
         v.push_back({"vct.opacity" + s, l.radiance.id(), GL_TEXTURE_3D, shared::kViewVoxelAlpha, r, r, 0, 1, 1});
         v.push_back({"vct.albedo" + s, l.albedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
         v.push_back({"vct.normal" + s, l.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1});
-        v.push_back({"vct.emission" + s, l.emission.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
     }
     if (mAnisotropic)  // +X -X +Y -Y +Z -Z from left to right
         v.push_back({"vct.anisotropic", mAniso.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, 6 * (r / 2), r / 2, 0, 1, 1});
@@ -540,7 +527,6 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
         std::string s = mLevels.size() > 1 ? "[" + std::to_string(k) + "]" : "";
         v.push_back({"albedo" + s, r + "R32UI (RGBA8 + count)", l.albedo.bytes()});
         v.push_back({"normal" + s, r + "R32UI (RGBA8 + count)", l.normal.bytes()});
-        v.push_back({"emission" + s, r + "R32UI (RGBA8 + count)", l.emission.bytes()});
         v.push_back({"exitRadiance" + s, r + "R11F_G11F_B10F x 2 (front, back)", l.exitFront.bytes() + l.exitBack.bytes()});
         if (l.bouncedFront.bytes())
             v.push_back({"bouncedRadiance" + s, r + "R11F_G11F_B10F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});

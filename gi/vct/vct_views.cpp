@@ -25,7 +25,6 @@ std::vector<VoxelGridView> voxelGrids(const VCT& vct, VCTMode mode) {
         VoxelGridView g;
         g.albedo = l.albedo.id();
         g.normal = l.normal.id();
-        g.emission = l.emission.id();
         g.radiance = l.radiance.id();
         g.mipCount = vctMipCount(res);
         g.resolution = res;
@@ -50,13 +49,11 @@ std::vector<VoxelGridView> voxelGrids(const std::vector<DebugView>& views, const
         std::string suffix = boxes.size() > 1 ? std::to_string(k) : "";
         const DebugView* albedo = find("vct.albedo" + suffix);
         const DebugView* normal = find("vct.normal" + suffix);
-        const DebugView* emission = find("vct.emission" + suffix);
         const DebugView* radiance = find("vct.radiance" + suffix);
-        if (!albedo || !normal || !emission || !radiance) return {};
+        if (!albedo || !normal || !radiance) return {};
         VoxelGridView g;
         g.albedo = albedo->texture;
         g.normal = normal->texture;
-        g.emission = emission->texture;
         g.radiance = radiance->texture;
         g.resolution = radiance->width;
         g.mipCount = vctMipCount(g.resolution);
@@ -97,9 +94,7 @@ void VoxelView::render(const std::vector<VoxelGridView>& grids, const VoxelViewP
         const VoxelGridView& g = grids[size_t(std::clamp(params.level, 0, int(grids.size()) - 1))];
         bool radiance = params.source == VoxelViewSource::Radiance;
         int mip = radiance ? std::clamp(params.mip, 0, g.mipCount - 1) : 0;
-        GLuint packed = params.source == VoxelViewSource::Normal     ? g.normal
-                        : params.source == VoxelViewSource::Emission ? g.emission
-                                                                     : g.albedo;
+        GLuint packed = params.source == VoxelViewSource::Normal ? g.normal : g.albedo;
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);

@@ -4,11 +4,11 @@
 // Voxel view (shaders/vct/voxel_view.frag): per pixel, the camera ray is clipped to one level's
 // grid and marched voxel by voxel (Amanatides and Woo's 3D DDA) through the dense volume at a
 // chosen mip. The first occupied voxel is drawn as the face of a cube the ray enters: its colour
-// is the voxel's albedo, normal, emission or radiance, times a fixed shade per face direction
+// is the voxel's albedo, normal or radiance, times a fixed shade per face direction
 // (top brightest, bottom darkest) with darkened voxel edges, so cubes read as cubes without a
 // light. Rays that hit nothing show the background colour.
 //   - Occupancy: the packed sources use the albedo volume's sample count (every voxelized voxel
-//     has one; emission only where emissive); radiance uses opacity >= opacityThreshold, which
+//     has one); radiance uses opacity >= opacityThreshold, which
 //     matters at coarse mips where opacity is fractional. Radiance is shown unpremultiplied.
 //   - The packed r32ui volumes have no mips: their view is at mip 0 always.
 //   - Clipmap levels are read through their toroidal offset, as the trace reads them.
@@ -34,18 +34,17 @@
 namespace gi {
 
 // What a voxel view shows. The values are VCTParams::viewSource (shaders/vct/vct_shared.h).
-enum class VoxelViewSource { Albedo = 0, Normal = 1, Emission = 2, Radiance = 3 };
+// Emissive surfaces have no voxel volume of their own (they reach VCT as area lights).
+enum class VoxelViewSource { Albedo = 0, Normal = 1, Radiance = 2 };
 template <>
 struct EnumNames<VoxelViewSource> {
-    static constexpr std::array<std::pair<VoxelViewSource, const char*>, 4> values{{{VoxelViewSource::Albedo, "albedo"},
-                                                                                    {VoxelViewSource::Normal, "normal"},
-                                                                                    {VoxelViewSource::Emission, "emission"},
-                                                                                    {VoxelViewSource::Radiance, "radiance"}}};
+    static constexpr std::array<std::pair<VoxelViewSource, const char*>, 3> values{
+        {{VoxelViewSource::Albedo, "albedo"}, {VoxelViewSource::Normal, "normal"}, {VoxelViewSource::Radiance, "radiance"}}};
 };
 
 // One level's volumes and placement, as the voxel view reads them.
 struct VoxelGridView {
-    GLuint albedo = 0, normal = 0, emission = 0;  // r32ui packed RGBA8 (rgb mean, a count)
+    GLuint albedo = 0, normal = 0;  // r32ui packed RGBA8 (rgb mean, a count)
     GLuint radiance = 0;                          // RGBA16F premultiplied radiance + opacity, with mips
     int mipCount = 1;                             // of radiance
     int resolution = 0;                           // voxels per side
@@ -69,7 +68,7 @@ struct VoxelViewParams {
     VoxelViewSource source = VoxelViewSource::Albedo;
     int level = 0;                  // grid level (cascaded and clipmap modes), clamped to those there are
     int mip = 0;                    // radiance mip, clamped; the packed sources show mip 0
-    float exposure = 0.0f;          // EV, radiance and emission
+    float exposure = 0.0f;          // EV, radiance
     float opacityThreshold = 0.25f; // radiance: a voxel is solid from this opacity
     bool edges = true;              // darken voxel edges
     glm::vec3 background{0.08f, 0.08f, 0.09f};  // display-encoded colour where the ray hits nothing

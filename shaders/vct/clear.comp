@@ -6,7 +6,6 @@
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform writeonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform writeonly uimage3D uNormalVox;
-layout(binding = kVCTImageEmission, r32ui) uniform writeonly uimage3D uEmissionVox;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -14,5 +13,4 @@ void main() {
     ivec3 t = texelOf(v);
     imageStore(uAlbedoVox, t, uvec4(0u));
     imageStore(uNormalVox, t, uvec4(0u));
-    imageStore(uEmissionVox, t, uvec4(0u));
 }

@@ -3,8 +3,10 @@
 // mean normal, back: against it), tested against the renderer's shadow maps at the voxel centre
 // moved one voxel towards the light and half a voxel off the surface (the voxel centre can sit up
 // to half a diagonal behind the surface it holds), stored as the radiance each side leaves,
-// L = albedo * E / pi (Lambertian), plus the emission on both sides in the first batch. Later
-// batches (more lights) and bounces add to it.
+// L = albedo * E / pi (Lambertian). Later batches (more lights) and bounces add to it. Emissive
+// surfaces are area lights here like any other light (their exact irradiance on each voxel below);
+// their own emission is not added to their voxels, since the raster's light pass already shades
+// their direct light and cones that gathered it would count it twice.
 // resolve.comp turns the two sides into the traced radiance volumes.
 #include "vct/common.glsl"
 #include "common/light.h"
@@ -13,7 +15,6 @@
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
-layout(binding = kVCTImageEmission, r32ui) uniform readonly uimage3D uEmissionVox;
 layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform image3D uExitFront;
 layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform image3D uExitBack;
 layout(binding = kVCTUnitShadow2D) uniform sampler2DShadow uShadow2D[kVCTMaxLights];
@@ -84,10 +85,6 @@ void main() {
     if (uVCT.accumulate != 0) {
         front += imageLoad(uExitFront, t).rgb;
         back += imageLoad(uExitBack, t).rgb;
-    } else if (occupied(packedAlbedo)) {
-        vec3 emission = unpackVoxel(imageLoad(uEmissionVox, t).r).rgb * uVCT.emissionRange;
-        front += emission;
-        back += emission;
     }
     imageStore(uExitFront, t, vec4(front, 1.0));
     imageStore(uExitBack, t, vec4(back, 1.0));

@@ -32,18 +32,17 @@ GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside th
 GI_CONST int kVCTUnitLowSpecular = 3;
 GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
 GI_CONST int kVCTMaxExactTriangles = 16;  // inject: area lights of more triangles are lit as points with a cosine lobe
-GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo, normal or emission)
+GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo or normal)
 GI_CONST int kVCTUnitViewRadiance = 2;   // premultiplied radiance + opacity, with mips
 
 // Image bindings. The voxel volumes keep one binding in every pass that reads or writes them;
 // the volumes a pass writes besides take the bindings that pass leaves free.
 GI_CONST int kVCTImageAlbedo = 0;      // r32ui running averages (clear, voxelize, inject, resolve, compact, bounce)
 GI_CONST int kVCTImageNormal = 1;
-GI_CONST int kVCTImageEmission = 2;
 GI_CONST int kVCTImageExitFront = 3;   // radiance each side leaves (inject writes, resolve and bounce read)
 GI_CONST int kVCTImageExitBack = 4;
 GI_CONST int kVCTImageRadiance = 5;    // resolve: the traced radiance volume
-GI_CONST int kVCTImageSHR = 6;         // resolve: the SH volumes; B takes the emission's binding, unused there
+GI_CONST int kVCTImageSHR = 6;         // resolve: the SH volumes; B takes binding 2, free there
 GI_CONST int kVCTImageSHG = 7;
 GI_CONST int kVCTImageSHB = 2;
 GI_CONST int kVCTImageBouncedFront = 5;  // bounce: direct plus gathered light, which resolve reads next
@@ -82,20 +81,15 @@ struct VCTParams {
     ivec4 clipMax;
     int resolution;      // voxels per side
     float cellSize;      // world size of a voxel
-    float emissionScale;  // voxelize: 1 / the scene's largest emission component
-    float emissionRange;  // inject: the scene's largest emission (voxels store emission / range)
-    // voxelize: the material drawn
-    vec4 baseColor;
-    vec4 emissive;       // xyz, w unused
+    // voxelize: the material drawn (no emission: emissive surfaces reach VCT as area lights)
     int hasTexture;
     float alphaCutoff;   // < 0: opaque
+    vec4 baseColor;
     float metallic;
-    float pad0;
     // inject: the batch, uLights[lightFirst + i] with its shadow maps on unit + i
     int lightFirst;
     int lightCount;
     int accumulate;      // adds to the exit radiance of the earlier batches
-    int sh;              // resolve: write the SH volumes too
     // mip
     ivec4 destSize;      // xyz: the level written, in voxels; w unused
     int sourceLevel;
@@ -128,23 +122,24 @@ struct VCTParams {
     int specularCone;
     float nearPlane;     // upsample: the camera's clip planes
     float farPlane;
-    float exposureScale;  // voxel view: radiance and emission
+    float exposureScale;  // voxel view: radiance
     float opacityThreshold;  // voxel view: radiance voxels below it are empty
-    int viewSource;      // voxel view: VoxelViewSource, 0 albedo, 1 normal, 2 emission, 3 radiance
+    int viewSource;      // voxel view: VoxelViewSource, 0 albedo, 1 normal, 2 radiance
     int viewMip;         // voxel view: the radiance mip marched (0 for the packed sources)
     int edges;           // voxel view: darken voxel edges
-    float pad1;
+    int sh;              // resolve: write the SH volumes too
     vec4 background;     // voxel view: xyz, display-encoded; w unused
 };
 
 #ifdef __cplusplus
 inline constexpr const char* kVCTBlockName = "VCTBlock";
 static_assert(offsetof(VCTParams, resolution) == 64 && offsetof(VCTParams, baseColor) == 80);
-static_assert(offsetof(VCTParams, lightFirst) == 128 && offsetof(VCTParams, destSize) == 144);
-static_assert(offsetof(VCTParams, coneCount) == 176 && offsetof(VCTParams, cones) == 208);
-static_assert(offsetof(VCTParams, levelMinCell) == 208 + 16 * kVCTMaxCones);
-static_assert(offsetof(VCTParams, invViewProj) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels));
-static_assert(sizeof(VCTParams) == 208 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 64);
+static_assert(offsetof(VCTParams, lightFirst) == 100 && offsetof(VCTParams, destSize) == 112);
+static_assert(offsetof(VCTParams, coneCount) == 144 && offsetof(VCTParams, cones) == 176);
+static_assert(offsetof(VCTParams, levelMinCell) == 176 + 16 * kVCTMaxCones);
+static_assert(offsetof(VCTParams, invViewProj) == 176 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels));
+static_assert(offsetof(VCTParams, sh) == 176 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 44);
+static_assert(sizeof(VCTParams) == 176 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 64);
 }  // namespace gi::vct
 #else
 layout(std140, binding = kVCTBlockBinding) uniform VCTBlock {

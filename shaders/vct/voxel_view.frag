@@ -23,14 +23,13 @@ ivec3 texelOf(ivec3 cell, int size) {
 // Colour of an occupied voxel (linear for the packed sources, unpremultiplied radiance), or a < 0.
 vec4 voxelColour(ivec3 cell, int size) {
     ivec3 t = texelOf(cell, size);
-    if (uVCT.viewSource == 3) {
+    if (uVCT.viewSource == 2) {
         vec4 r = texelFetch(uRadiance, t, uVCT.viewMip);
         if (r.a < uVCT.opacityThreshold) return vec4(-1.0);
         return vec4(r.rgb / r.a * uVCT.exposureScale, 1.0);
     }
     if ((texelFetch(uOccupancy, t, 0).r >> 24) == 0u) return vec4(-1.0);
     vec3 c = unpackUnorm4x8(texelFetch(uPacked, t, 0).r).rgb;
-    if (uVCT.viewSource == 2) c *= uVCT.exposureScale;
     return vec4(c, 1.0);
 }
 

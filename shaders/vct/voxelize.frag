@@ -3,8 +3,8 @@
 // at most ~1.4 voxels per pixel along the dominant axis, so one or two voxels, three at most),
 // which keeps sloped surfaces watertight. Values go in with a running average by atomic
 // compare-and-swap on RGBA8 packed in r32ui (seed 000 and 003): rgb the mean, a the count.
-// Albedo is the diffuse albedo (base colour times 1 - metallic); emission is divided by the
-// scene's largest emission so it fits 8 bits; normals are stored as n * 0.5 + 0.5.
+// Albedo is the diffuse albedo (base colour times 1 - metallic); normals are stored as
+// n * 0.5 + 0.5. Emission is not stored: emissive surfaces reach VCT as area lights (inject.comp).
 #include "common/shared.h"
 #include "common/material.glsl"
 #include "vct/vct_shared.h"
@@ -12,7 +12,6 @@
 layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 layout(binding = kVCTImageAlbedo, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform coherent volatile uimage3D uNormalVox;
-layout(binding = kVCTImageEmission, r32ui) uniform coherent volatile uimage3D uEmissionVox;
 
 in vec3 gGrid;
 in vec3 gNormal;
@@ -51,14 +50,11 @@ void main() {
 
     vec3 albedo = clamp(base.rgb * (1.0 - uVCT.metallic), 0.0, 1.0);
     vec3 n = normalize(gNormal) * 0.5 + 0.5;
-    vec3 e = clamp(uVCT.emissive.xyz * uVCT.emissionScale, 0.0, 1.0);
-    bool emissive = any(greaterThan(uVCT.emissive.xyz, vec3(0.0)));
     for (int z = first; z <= last; ++z) {
         ivec3 c = ivec3(unswizzle(vec3(floor(gl_FragCoord.xy), float(z)), gAxis));
         if (any(lessThan(c, uVCT.clipMin.xyz)) || any(greaterThanEqual(c, uVCT.clipMax.xyz))) continue;
         c = (c + uVCT.wrapOffset.xyz) % uVCT.resolution;
         GI_RUNNING_AVERAGE(uAlbedoVox, c, albedo)
         GI_RUNNING_AVERAGE(uNormalVox, c, n)
-        if (emissive) GI_RUNNING_AVERAGE(uEmissionVox, c, e)
     }
 }

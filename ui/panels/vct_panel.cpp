@@ -1,5 +1,5 @@
 // VCT's panel: the voxel grid seen from the camera, in the viewport or in a window, with the
-// source (albedo, normal, emission, radiance), level, mip and exposure to show.
+// source (albedo, normal, radiance), level, mip and exposure to show.
 #include "gi/vct/vct_views.h"
 #include "ui/editor.h"
 #include "ui/panel_util.h"
@@ -35,7 +35,7 @@ public:
         mDisplay = Display(display);
         if (mDisplay == Display::Off) return 0;
         int source = int(mParams.source);
-        ImGui::Combo("voxels show", &source, "albedo\0normal\0emission\0radiance\0");
+        ImGui::Combo("voxels show", &source, "albedo\0normal\0radiance\0");
         mParams.source = VoxelViewSource(source);
         const VCTSettings& s = ctx.preset.vct;
         int levels = s.mode == VCTMode::Dense ? 1 : s.levelCount;
@@ -51,9 +51,8 @@ public:
         if (mParams.source == VoxelViewSource::Radiance) {
             ImGui::SliderInt("voxel mip", &mParams.mip, 0, vctMipCount(s.gridResolution) - 1);
             ImGui::SliderFloat("solid from", &mParams.opacityThreshold, 0.01f, 1.0f, "opacity %.2f");
-        }
-        if (mParams.source == VoxelViewSource::Radiance || mParams.source == VoxelViewSource::Emission)
             ImGui::SliderFloat("voxel exposure", &mParams.exposure, -10.0f, 10.0f, "%.1f EV");
+        }
         ImGui::Checkbox("voxel edges", &mParams.edges);
         return 0;
     }
