@@ -81,6 +81,7 @@ LPV::LPV()
     for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
                            &mResolveProg, &mShadeProg})
         mBlock.requireIn(*p);
+    mMaterialBinding.requireIn(mRSMProg);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
 }
 
@@ -220,19 +221,15 @@ void LPV::renderRSMs(const FrameContext& ctx) {
             const float one = 1.0f;
             glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
             // The material changes per draw, so each draw uploads the block.
-            ctx.scene.draw([&](const Material& mat, int) {
-                LPVParams p{};
-                p.lightViewProj = m.viewProj;
-                p.lightIndex = int(li);
-                p.texelArea = m.texelArea;
-                p.texelSolidAngle = m.texelSolidAngle;
-                p.baseColor = mat.baseColor;
-                p.metallic = mat.metallic;
-                p.hasTexture = mat.baseColorTexture >= 0 ? 1 : 0;
-                p.alphaCutoff = mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f;
-                mBlock.set(p);
-                if (mat.baseColorTexture >= 0) glBindTextureUnit(kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
-            });
+            LPVParams p{};
+            p.lightViewProj = m.viewProj;
+            p.lightIndex = int(li);
+            p.texelArea = m.texelArea;
+            p.texelSolidAngle = m.texelSolidAngle;
+            mBlock.set(p);
+            mMaterialBinding.begin(0);
+            ctx.scene.draw([&](const Material& mat, int) { mMaterialBinding.bind(ctx.scene, mat); });
+            mMaterialBinding.end();
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

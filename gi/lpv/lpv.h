@@ -46,6 +46,7 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/uniform_block.h"
+#include "gi/render/material_binding.h"
 #include "gi/render/pass.h"
 #include "lpv/lpv_shared.h"
 
@@ -107,6 +108,7 @@ private:
     gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mResolveProg,
         mShadeProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
+    MaterialBinding mMaterialBinding;  // the RSM pass reads it
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;
     std::vector<RSM> mRSMs;

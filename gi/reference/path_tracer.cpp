@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -295,7 +296,6 @@ struct PathTracer::Impl {
     std::vector<float> emitterCdf;  // normalised, by power
     float emitterPower = 0.0f;      // sum of area * luminance
     std::vector<int> triangleMaterial;
-    float srgbLut[256];
     // The last environment loaded, keyed by its file, so passes of one render load it once.
     mutable std::mutex environmentMutex;
     mutable std::string environmentFile;
@@ -310,32 +310,26 @@ struct PathTracer::Impl {
         return environmentLight;
     }
 
-    glm::vec4 sampleTexture(int texture, glm::vec2 uv) const {
-        const Texture& t = scene.textures[texture];
-        float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f;
-        float y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
-        int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-        float fx = x - float(x0), fy = y - float(y0);
-        auto texel = [&](int xi, int yi) {
-            xi = ((xi % t.width) + t.width) % t.width;
-            yi = ((yi % t.height) + t.height) % t.height;
-            const uint8_t* p = &t.rgba[(size_t(yi) * t.width + xi) * 4];
-            return glm::vec4(srgbLut[p[0]], srgbLut[p[1]], srgbLut[p[2]], float(p[3]) / 255.0f);
-        };
-        return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+    // Interpolated texture coordinates (TEXCOORD_0, TEXCOORD_1) at barycentrics (u, v).
+    std::pair<glm::vec2, glm::vec2> uvAt(int triangle, float u, float v) const {
+        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
+        const Vertex &a = scene.vertices[idx[0]], &b = scene.vertices[idx[1]], &c = scene.vertices[idx[2]];
+        return {(1.0f - u - v) * a.uv + u * b.uv + v * c.uv, (1.0f - u - v) * a.uv1 + u * b.uv1 + v * c.uv1};
     }
 
-    glm::vec2 uvAt(int triangle, float u, float v) const {
-        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
-        return (1.0f - u - v) * scene.vertices[idx[0]].uv + u * scene.vertices[idx[1]].uv + v * scene.vertices[idx[2]].uv;
+    // A slot's texture of a material at a point, as common/material.glsl reads it.
+    glm::vec4 sampleSlot(const Material& m, int slot, const std::pair<glm::vec2, glm::vec2>& uv) const {
+        return sampleTexture(scene.textures[size_t(m.texture(slot))], m.uvTransform[slot].apply(uv.first, uv.second));
     }
 
     glm::vec4 baseColorAt(const Material& m, int triangle, float u, float v) const {
         glm::vec4 c = m.baseColor;
-        if (m.baseColorTexture >= 0) c *= sampleTexture(m.baseColorTexture, uvAt(triangle, u, v));
+        if (m.baseColorTexture >= 0) c *= sampleSlot(m, kSlotBaseColor, uvAt(triangle, u, v));
         return c;
     }
 
+    // Mask cuts below the cutoff; Blend is a stochastic mask, cut where alpha is below a
+    // threshold hashed from the hit (so a ray sees through alpha of the surface, on average).
     static void alphaFilter(const RTCFilterFunctionNArguments* args) {
         const auto* g = static_cast<const GeometryData*>(args->geometryUserPtr);
         const Impl& impl = *g->impl;
@@ -343,14 +337,23 @@ struct PathTracer::Impl {
         const Material& m = impl.scene.materials[d.material];
         for (unsigned i = 0; i < args->N; ++i) {
             if (args->valid[i] != -1) continue;
-            int tri = int(d.firstIndex / 3 + RTCHitN_primID(args->hit, args->N, i));
+            unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+            int tri = int(d.firstIndex / 3 + prim);
             float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-            if (impl.baseColorAt(m, tri, u, v).a < m.alphaCutoff) args->valid[i] = 0;
+            float alpha = impl.baseColorAt(m, tri, u, v).a;
+            float threshold = m.alphaCutoff;
+            if (m.alphaMode == AlphaMode::Blend) {
+                uint32_t ub, vb;
+                std::memcpy(&ub, &u, 4);
+                std::memcpy(&vb, &v, 4);
+                uint64_t h = mix64((uint64_t(prim) << 32) ^ (uint64_t(ub) << 16) ^ uint64_t(vb) ^ (uint64_t(d.material) << 48));
+                threshold = float(h >> 40) * 0x1p-24f * (1.0f - 1e-3f) + 1e-3f;
+            }
+            if (alpha < threshold) args->valid[i] = 0;
         }
     }
 
     explicit Impl(const Scene& s) : scene(s) {
-        for (int i = 0; i < 256; ++i) srgbLut[i] = srgbToLinear(float(i) / 255.0f);
         device = rtcNewDevice(nullptr);
         if (!device) throw Error("Embree: cannot create a device");
         rtc = rtcNewScene(device);
@@ -382,7 +385,7 @@ struct PathTracer::Impl {
                                                                        3 * sizeof(uint32_t), triCount));
             std::copy(local.begin(), local.end(), ib);
             geometries.push_back({this, int(di)});
-            if (m.alphaMode == AlphaMode::Mask) {
+            if (m.alphaMode != AlphaMode::Opaque) {
                 rtcSetGeometryUserData(geom, &geometries.back());
                 rtcSetGeometryIntersectFilterFunction(geom, alphaFilter);
                 rtcSetGeometryOccludedFilterFunction(geom, alphaFilter);
@@ -478,6 +481,24 @@ struct PathTracer::Impl {
         return len > 0.0f ? n / len : glm::vec3(0, 1, 0);
     }
 
+    // The shading normal N (already facing the viewer) bent by the material's normal map through
+    // the interpolated tangent frame, as materialNormal() in common/material.glsl.
+    glm::vec3 normalMapped(const Material& m, int triangle, float u, float v, const glm::vec3& N,
+                           const std::pair<glm::vec2, glm::vec2>& uv) const {
+        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
+        const Vertex &a = scene.vertices[idx[0]], &b = scene.vertices[idx[1]], &c = scene.vertices[idx[2]];
+        glm::vec4 tangent = (1.0f - u - v) * a.tangent + u * b.tangent + v * c.tangent;
+        glm::vec3 t = glm::vec3(tangent) - N * glm::dot(N, glm::vec3(tangent));
+        if (glm::dot(t, t) < 1e-12f) return N;
+        t = glm::normalize(t);
+        glm::vec3 bt = glm::cross(N, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+        glm::vec3 n = glm::vec3(sampleSlot(m, kSlotNormal, uv)) * 2.0f - 1.0f;
+        n.x *= m.normalScale;
+        n.y *= m.normalScale;
+        glm::vec3 bent = t * n.x + bt * n.y + N * n.z;
+        return glm::dot(bent, bent) > 1e-12f ? glm::normalize(bent) : N;
+    }
+
     // Offset along the geometric normal, scaled with the coordinates' magnitude so large scenes
     // (Sponza) and tiny ones (Avocado) both escape their own surface.
     static glm::vec3 offset(const glm::vec3& p, const glm::vec3& ng) {
@@ -534,6 +555,8 @@ struct PathTracer::Impl {
             glm::vec3 Ns = shadingNormal(h.triangle, h.u, h.v);
             glm::vec3 V = -d;
 
+            std::pair<glm::vec2, glm::vec2> uv = uvAt(h.triangle, h.u, h.v);
+
             // Emission, on the side the shading normal points to.
             if (luminance(m.emissive) > 0.0f && glm::dot(Ns, V) > 0.0f) {
                 bool counts = bounce <= 1 ? countDirect : countIndirect;
@@ -544,7 +567,7 @@ struct PathTracer::Impl {
                         float pdfLight = luminance(m.emissive) / emitterPower * h.t * h.t / cosLight;
                         w = powerHeuristic(prevPdf, pdfLight);
                     }
-                    L += beta * m.emissive * w;
+                    L += beta * emission(scene, m, uv.first, uv.second) * w;
                 }
             }
             if (bounce >= rs.maxBounces) break;
@@ -553,11 +576,20 @@ struct PathTracer::Impl {
             // Two-sided shading: normals face the incoming ray.
             glm::vec3 Ng = glm::dot(h.Ng, V) < 0.0f ? -h.Ng : h.Ng;
             if (glm::dot(Ns, Ng) < 0.0f) Ns = -Ns;
-            glm::vec4 base = baseColorAt(m, h.triangle, h.u, h.v);
+            // The material model of common/material.glsl: normal map, metallic-roughness texture.
+            if (m.normalTexture >= 0) Ns = normalMapped(m, h.triangle, h.u, h.v, Ns, uv);
+            glm::vec4 base = m.baseColor;
+            if (m.baseColorTexture >= 0) base *= sampleSlot(m, kSlotBaseColor, uv);
+            float roughness = m.roughness, metallic = m.metallic;
+            if (m.metallicRoughnessTexture >= 0) {
+                glm::vec4 mr = sampleSlot(m, kSlotMetallicRoughness, uv);
+                roughness *= mr.g;
+                metallic *= mr.b;
+            }
             Surface s;
             s.baseColor = glm::vec3(base);
-            s.metallic = m.metallic;
-            s.alpha = std::max(m.roughness * m.roughness, 0.002f);
+            s.metallic = metallic;
+            s.alpha = std::max(roughness * roughness, 0.002f);
             s.specular = fs.render.specular;
             BSDF bsdf(s, Ns, V);
             glm::vec3 Po = offset(P, Ng);
@@ -658,7 +690,8 @@ struct PathTracer::Impl {
         ++rays;
         if (occluded(Po, Ldir, dist * (1.0f - 1e-3f))) return glm::vec3(0.0f);
         float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
-        return f * NoL * m.emissive * w / pdfLight;
+        auto uv = uvAt(e.triangle, b1, b2);
+        return f * NoL * emission(scene, m, uv.first, uv.second) * w / pdfLight;
     }
 
     // Next-event estimation of the environment: a direction drawn from its luminance, an

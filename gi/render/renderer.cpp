@@ -64,6 +64,7 @@ Renderer::Renderer()
       mBlock(kRenderBlockName, kRenderBlockBinding) {
     for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
+    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
     for (const PassInfo& info : passRegistry())
         if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
@@ -295,18 +296,12 @@ void Renderer::renderShadows(const FrameSettings& fs) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mShadowSize, mShadowSize);
-    glBindSampler(kUnitBaseColor, mMaterialSampler.id());
+    mMaterialBinding.begin(mMaterialSampler.id());
 
-    // `params` holds the face's projection; the material fields are filled per draw.
+    // `params` holds the face's projection; the material block is uploaded per draw.
     auto drawScene = [&](RenderParams& params) {
-        mScene->draw([&](const Material& m, int) {
-            bool mask = m.alphaMode == AlphaMode::Mask;
-            params.alphaCutoff = mask ? m.alphaCutoff : -1.0f;
-            params.baseColor = m.baseColor;
-            params.hasTexture = mask && m.baseColorTexture >= 0 ? 1 : 0;
-            mBlock.set(params);
-            glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
-        });
+        mBlock.set(params);
+        mScene->draw([&](const Material& m, int) { mMaterialBinding.bind(*mScene, m); });
     };
 
     for (size_t i = 0; i < fs.lights.size(); ++i) {
@@ -340,7 +335,7 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             drawScene(params);
         }
     }
-    glBindSampler(kUnitBaseColor, 0);
+    mMaterialBinding.end();
 }
 
 void Renderer::renderGBuffer(const glm::mat4& viewProj) {
@@ -359,18 +354,10 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     mGBufferProg.use();
     RenderParams params{};
     params.viewProj = viewProj;
-    glBindSampler(kUnitBaseColor, mMaterialSampler.id());
-    mScene->draw([&](const Material& m, int) {
-        params.baseColor = m.baseColor;
-        params.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
-        params.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
-        params.roughness = m.roughness;
-        params.metallic = m.metallic;
-        params.emissive = glm::vec4(m.emissive, 0.0f);
-        mBlock.set(params);
-        glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
-    });
-    glBindSampler(kUnitBaseColor, 0);
+    mBlock.set(params);
+    mMaterialBinding.begin(mMaterialSampler.id());
+    mScene->draw([&](const Material& m, int) { mMaterialBinding.bind(*mScene, m); });
+    mMaterialBinding.end();
 }
 
 void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx) {

@@ -1,13 +1,16 @@
-// G-buffer: albedo (sRGB texture decoded by the sampler), world normal, roughness/metallic,
-// emissive. Alpha-masked materials discard below the cutoff. Back faces flip their normal so
-// single-sheet geometry (curtains, leaves) is lit from both sides.
+// G-buffer: albedo (sRGB texture decoded by the sampler), world shading normal (normal-mapped),
+// roughness/metallic and 1 - occlusion (the material texture's G, B and the occlusion map's R),
+// emission (factor times the emissive texture). Mask and Blend materials cut fragments
+// (common/material.glsl). Back faces flip their normal so single-sheet geometry (curtains,
+// leaves) is lit from both sides; a single-sided material's back faces emit nothing.
+// Occlusion is stored as 1 - occlusion so surfaces without the map keep 0 there.
 #include "render/render_shared.h"
 #include "common/material.glsl"
 
-layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
-
 in vec3 vNormal;
+in vec4 vTangent;
 in vec2 vUV;
+in vec2 vUV1;
 
 layout(location = 0) out vec4 oAlbedo;
 layout(location = 1) out vec4 oNormal;
@@ -15,13 +18,14 @@ layout(location = 2) out vec4 oMaterial;
 layout(location = 3) out vec4 oEmissive;
 
 void main() {
-    vec4 base = uRender.baseColor;
-    if (uRender.hasTexture != 0) base *= sampleMaterial(uBaseColorTex, vUV);
-    if (uRender.alphaCutoff >= 0.0 && base.a < uRender.alphaCutoff) discard;
-    vec3 n = normalize(vNormal);
-    if (!gl_FrontFacing) n = -n;
+    vec4 base = materialBaseColor(vUV, vUV1);
+    vec3 n = materialNormal(vNormal, vTangent, gl_FrontFacing, vUV, vUV1);
+    vec2 rm = materialRoughnessMetallic(vUV, vUV1);
+    float occlusion = materialOcclusion(vUV, vUV1);
+    vec3 emission = materialEmission(gl_FrontFacing, vUV, vUV1);
+    if (materialCut(base.a)) discard;
     oAlbedo = vec4(base.rgb, 1.0);
     oNormal = vec4(n, 1.0);
-    oMaterial = vec4(uRender.roughness, uRender.metallic, 0.0, 1.0);
-    oEmissive = vec4(uRender.emissive.rgb, 1.0);
+    oMaterial = vec4(rm, 1.0 - occlusion, 1.0);
+    oEmissive = vec4(emission, 1.0);
 }

@@ -83,7 +83,7 @@ struct VCTParams {
     float cellSize;      // world size of a voxel
     float emissionScale;  // voxelize: 1 / the scene's largest emission component
     float emissionRange;  // inject: the scene's largest emission (voxels store emission / range)
-    // voxelize: the material drawn
+    // unused: the material moved to MaterialBlock (common/material_shared.h); kept until the block is next reshaped
     vec4 baseColor;
     vec4 emissive;       // xyz, w unused
     int hasTexture;
