@@ -279,6 +279,35 @@ TEST_F(Materials, EmissiveTextureGlowsInRasterAndReference) {
     EXPECT_LT(radianceAt(PathTracer(s).render(below, rs), below, left).x, 0.01f);
 }
 
+// Occlusion texture: R with occlusionStrength scales the indirect (here ambient) term and leaves
+// direct light alone.
+TEST_F(Materials, OcclusionScalesOnlyTheIndirectTerm) {
+    fs::path dir = test::tempDir();
+    writeHalves(dir / "o.png", {64, 0, 0, 255}, {64, 0, 0, 255});
+    json occluded = lambert(0.5f);
+    occluded["occlusionTexture"] = {{"index", 0}, {"strength", 0.5}};
+    Scene withMap = loadGLTF(writePlane(dir, "occluded", occluded, {"o.png"}));
+    Scene without = loadGLTF(writePlane(dir, "open", lambert(0.5f), {}));
+    const float occlusion = 1.0f + 0.5f * (64.0f / 255.0f - 1.0f);
+    LightSettings sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.2f));
+    auto radiance = [&](const Scene& s, glm::vec3 ambient, bool lit) {
+        FrameSettings fs = view(kEye);
+        fs.render.ambient = ambient;
+        if (lit) fs.lights = {sun};
+        Renderer r;
+        r.setScene(s);
+        r.render(fs);
+        return radianceAt(r, fs, glm::vec3(0.0f)).x;
+    };
+    EXPECT_NEAR(radiance(without, glm::vec3(1.0f), false), 0.5f, 0.01f);
+    EXPECT_NEAR(radiance(withMap, glm::vec3(1.0f), false), 0.5f * occlusion, 0.01f);
+    float direct = radiance(without, glm::vec3(0.0f), true);
+    EXPECT_GT(direct, 0.1f);
+    EXPECT_NEAR(radiance(withMap, glm::vec3(0.0f), true), direct, 0.005f * direct);
+}
+
 // (4) KHR_texture_transform moves the texture: an offset of half the width swaps the halves, a
 // scale of 2 repeats them, and a texCoord override to 1 reads TEXCOORD_1 (shifted by half here).
 TEST_F(Materials, TextureTransformMovesTheTexture) {

@@ -712,7 +712,7 @@ private:
         for (float f : uv) largest = std::max(largest, std::abs(f));
         if (largest > kMaxTexCoord) {
             char buf[200];
-            std::snprintf(buf, sizeof buf, ": %s coordinates reach %g, past +-2^23 where they address no texel; ignored", name.c_str(),
+            std::snprintf(buf, sizeof buf, ": %s texture coordinates reach %g, past +-2^23 where they address no texel; ignored", name.c_str(),
                           double(largest));
             warnOnce(where + buf);
             uv.clear();
