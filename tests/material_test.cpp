@@ -271,12 +271,20 @@ TEST_F(Materials, EmissiveTextureGlowsInRasterAndReference) {
     EXPECT_NEAR(refL.y, 2.0f * srgbToLinear(188.0f / 255.0f), 0.05f);
     EXPECT_LT(refR.x, 0.01f);
 
-    // Single-sided: seen from below, the plane's back face emits nothing, in both.
+    // Single-sided: seen from below, the plane's back face emits nothing, in both; a
+    // double-sided one emits on both sides.
     FrameSettings below = view(kEye * glm::vec3(1, -1, 1));
+    FrameSettings belowSmall = below;
+    belowSmall.width = belowSmall.height = 48;
     r.render(below);
     EXPECT_LT(radianceAt(r, below, left).x, 0.01f);
-    below.width = below.height = 48;
-    EXPECT_LT(radianceAt(PathTracer(s).render(below, rs), below, left).x, 0.01f);
+    EXPECT_LT(radianceAt(PathTracer(s).render(belowSmall, rs), belowSmall, left).x, 0.01f);
+    m["doubleSided"] = true;
+    Scene twoSided = loadGLTF(writePlane(dir, "glow2", m, {"e.png"}));
+    r.setScene(twoSided);
+    r.render(below);
+    EXPECT_NEAR(radianceAt(r, below, left).x, 2.0f, 0.02f);
+    EXPECT_NEAR(radianceAt(PathTracer(twoSided).render(belowSmall, rs), belowSmall, left).x, 2.0f, 0.05f);
 }
 
 // Occlusion texture: R with occlusionStrength scales the indirect (here ambient) term and leaves

@@ -557,13 +557,14 @@ struct PathTracer::Impl {
 
             std::pair<glm::vec2, glm::vec2> uv = uvAt(h.triangle, h.u, h.v);
 
-            // Emission, on the side the shading normal points to.
-            if (luminance(m.emissive) > 0.0f && glm::dot(Ns, V) > 0.0f) {
+            // Emission, on the side the shading normal points to (both sides when double-sided,
+            // as the raster's G-buffer).
+            if (luminance(m.emissive) > 0.0f && (m.doubleSided || glm::dot(Ns, V) > 0.0f)) {
                 bool counts = bounce <= 1 ? countDirect : countIndirect;
                 if (counts) {
                     float w = 1.0f;
                     if (bounce > 0) {
-                        float cosLight = glm::dot(Ns, V);
+                        float cosLight = std::abs(glm::dot(Ns, V));
                         float pdfLight = luminance(m.emissive) / emitterPower * h.t * h.t / cosLight;
                         w = powerHeuristic(prevPdf, pdfLight);
                     }
@@ -680,10 +681,11 @@ struct PathTracer::Impl {
         if (dist2 <= 0.0f) return glm::vec3(0.0f);
         float dist = std::sqrt(dist2);
         glm::vec3 Ldir = toL / dist;
+        const Material& m = scene.materials[e.material];
         float cosLight = glm::dot(Nl, -Ldir);
+        if (m.doubleSided) cosLight = std::abs(cosLight);
         float NoL = glm::dot(Ns, Ldir);
         if (cosLight <= 0.0f || NoL <= 0.0f || glm::dot(Ng, Ldir) <= 0.0f) return glm::vec3(0.0f);
-        const Material& m = scene.materials[e.material];
         float pdfLight = luminance(m.emissive) / emitterPower * dist2 / cosLight;
         glm::vec3 f = bsdf.eval(Ldir);
         if (maxComponent(f) <= 0.0f) return glm::vec3(0.0f);

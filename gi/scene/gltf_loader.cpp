@@ -737,9 +737,9 @@ private:
         return glm::vec4(t, glm::dot(glm::cross(n, t), b) > 0.0f ? -1.0f : 1.0f);
     }
 
-    // Per-vertex tangents for a primitive without TANGENT: each triangle's tangent, weighted by
-    // its UV-space area through the unnormalised formula, summed at its corners; the sign of
-    // the sum of bitangent signs decides each vertex's handedness. Orthogonalised later.
+    // Per-vertex tangents for a primitive without TANGENT: each triangle's unit tangent, weighted
+    // by its area, summed at its corners; the area-weighted sum of the triangles' bitangent signs
+    // decides each vertex's handedness. Orthogonalised against the normal later.
     static std::vector<float> deriveTangents(const std::vector<float>& pos, const std::vector<float>& nrm, const std::vector<float>& uv,
                                              const std::vector<uint32_t>& tris) {
         size_t n = pos.size() / 3;
@@ -756,9 +756,9 @@ private:
             }
             glm::vec4 tb = triangleTangent(p, tc);
             float area = 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+            glm::vec3 dir = glm::length(glm::vec3(tb)) > 0.0f ? glm::normalize(glm::vec3(tb)) : glm::vec3(0.0f);
             for (int c = 0; c < 3; ++c) {
                 uint32_t i = tris[k + size_t(c)];
-                glm::vec3 dir = glm::length(glm::vec3(tb)) > 0.0f ? glm::normalize(glm::vec3(tb)) : glm::vec3(0.0f);
                 t[i] += dir * area;
                 sign[i] += tb.w * area;
             }
