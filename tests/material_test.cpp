@@ -8,6 +8,7 @@
 #include "gi/render/image_io.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/camera.h"
+#include "gi/scene/mesh_builder.h"
 #include "gi/scene/scene.h"
 #include "gi/util/error.h"
 #include "test_util.h"
@@ -404,6 +405,42 @@ TEST_F(Materials, AlphaMaskCutoffAndDitheredBlend) {
     ImageRGB ref = PathTracer(s).render(small, many);
     EXPECT_NEAR(radianceAt(ref, small, left).x, 0.2f, 0.08f);
     EXPECT_NEAR(radianceAt(ref, small, right).x, 0.8f, 0.08f);
+}
+
+// Mask and Blend cut holes in the shadow maps too: a plate whose alpha is below the cutoff
+// casts no shadow; above it, it does; a Blend plate of alpha 0.5 lets about half the light through.
+TEST_F(Materials, CutOutsCutTheShadowMaps) {
+    auto shadowed = [](AlphaMode mode, float cutoff, uint8_t alpha) {
+        Scene s;
+        MeshBuilder b(s);
+        int floor = b.material("floor", glm::vec3(0.5f), 1.0f);
+        b.quad(floor, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40});
+        Texture t;
+        t.width = t.height = 4;
+        t.rgba.assign(4 * 4 * 4, 255);
+        for (size_t i = 3; i < t.rgba.size(); i += 4) t.rgba[i] = alpha;
+        s.textures.push_back(t);
+        int plate = b.material("plate", glm::vec3(0.5f), 1.0f, 0);
+        s.materials[size_t(plate)].alphaMode = mode;
+        s.materials[size_t(plate)].alphaCutoff = cutoff;
+        b.quad(plate, {-2.0f, 1.0f, 2.0f}, {4, 0, 0}, {0, 0, -4});
+        s.finalize();
+        LightSettings sun;
+        sun.type = LightType::Directional;
+        sun.direction = {0.0f, -1.0f, 0.0f};
+        sun.intensity = 1.0f;
+        // The camera looks from the side, under the plate, at the floor below its centre.
+        FrameSettings fs = view({6.0f, 0.5f, 0.3f});
+        fs.lights = {sun};
+        Renderer r;
+        r.setScene(s);
+        r.render(fs);
+        return radianceAt(r, fs, glm::vec3(0.0f)).x;
+    };
+    float lit = 0.5f / glm::pi<float>();
+    EXPECT_NEAR(shadowed(AlphaMode::Mask, 0.5f, 51), lit, 0.02f * lit) << "alpha 0.2 under cutoff 0.5 casts no shadow";
+    EXPECT_LT(shadowed(AlphaMode::Mask, 0.1f, 51), 0.01f * lit) << "alpha 0.2 over cutoff 0.1 casts a shadow";
+    EXPECT_NEAR(shadowed(AlphaMode::Blend, 0.5f, 128), 0.5f * lit, 0.15f * lit) << "Blend alpha 0.5: a dithered half shadow";
 }
 
 // The new texture references are range-checked; errors name the material and the slot.
