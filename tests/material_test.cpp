@@ -4,6 +4,7 @@
 // the reference, KHR_texture_transform and TEXCOORD_1, alpha Mask and Blend, and the loader's
 // range checks on the new indices.
 #include "fuzz/mutator.h"
+#include "gi/preset/preset.h"
 #include "gi/reference/path_tracer.h"
 #include "gi/render/image_io.h"
 #include "gi/render/renderer.h"
@@ -441,6 +442,48 @@ TEST_F(Materials, CutOutsCutTheShadowMaps) {
     EXPECT_NEAR(shadowed(AlphaMode::Mask, 0.5f, 51), lit, 0.02f * lit) << "alpha 0.2 under cutoff 0.5 casts no shadow";
     EXPECT_LT(shadowed(AlphaMode::Mask, 0.1f, 51), 0.01f * lit) << "alpha 0.2 over cutoff 0.1 casts a shadow";
     EXPECT_NEAR(shadowed(AlphaMode::Blend, 0.5f, 128), 0.5f * lit, 0.15f * lit) << "Blend alpha 0.5: a dithered half shadow";
+}
+
+// Every technique's scene passes (shadow maps, RSMs, voxelization) draw a material with every
+// map, a texture transform, TEXCOORD_1 and Blend without a GL error (GLTest fails on one), and
+// light the plane.
+TEST_F(Materials, EveryTechniqueDrawsEveryMap) {
+    fs::path dir = test::tempDir();
+    writeHalves(dir / "c.png", {255, 128, 64, 200}, {64, 255, 128, 255});
+    writeHalves(dir / "n.png", {150, 128, 240, 255}, {110, 140, 240, 255});
+    json m = {{"pbrMetallicRoughness",
+               {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.25, 0.0}}, {"rotation", 0.3}}}}}}},
+                {"metallicRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}}},
+              {"normalTexture", {{"index", 1}, {"scale", 0.8}}},
+              {"occlusionTexture", {{"index", 0}}},
+              {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}},
+              {"emissiveFactor", {0.5, 0.5, 0.5}},
+              {"alphaMode", "BLEND"}};
+    Scene scene = loadGLTF(writePlane(dir, "all", m, {"c.png", "n.png"}));
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+    for (const char* technique : {"none", "lpv", "vct"}) {
+        Preset p;
+        p.header.technique.name = technique;
+        p.vct.gridResolution = 32;
+        p.lpv.gridResolution = 16;
+        FrameSettings fs = frameSettings(p, scene, 64, 64);
+        fs.camera.eye = kEye;
+        fs.camera.target = glm::vec3(0.0f);
+        LightSettings sun;
+        sun.type = LightType::Directional;
+        sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.2f));
+        fs.lights = {sun};
+        Renderer r;
+        r.setScene(scene);
+        r.render(fs);
+        std::vector<float> px = r.readHDR();
+        double sum = 0.0;
+        for (float v : px) {
+            ASSERT_TRUE(std::isfinite(v)) << technique;
+            sum += v;
+        }
+        EXPECT_GT(sum, 0.0) << technique;
+    }
 }
 
 // The new texture references are range-checked; errors name the material and the slot.
