@@ -55,6 +55,10 @@ TEST(AreaLight, PolygonIrradianceMatchesTheClosedFormAtTheCentreAndACorner) {
     // Single-sided: nothing behind it; double-sided: the mirror image.
     EXPECT_EQ(squareIrradiance(s, {0.0f, 2.0f * h, 0.0f}, -up), 0.0);
     EXPECT_NEAR(squareIrradiance(s, {0.0f, 2.0f * h, 0.0f}, -up, true), centreExact, 0.02 * centreExact);
+    // A point on the light's own plane sees it edge-on: nothing (the edge formula alone would
+    // count the whole hemisphere inside it).
+    EXPECT_EQ(squareIrradiance(s, {0.1f, h, 0.1f}, -up, true), 0.0);
+    EXPECT_EQ(squareIrradiance(s, {0.1f, h + 1e-5f, 0.1f}, up, true), 0.0);
 }
 
 TEST(AreaLight, PolygonIrradianceClipsAtTheHorizon) {

@@ -44,8 +44,11 @@ TEST(HostileGLTF, EveryCorpusSeedLoads) {
     }
     EXPECT_EQ(seed("avocado.glb").doc["images"].size(), 3u);
     Scene avocado = load(fuzz::applyEdits(seed("avocado.glb"), json::array()), "avocado");
-    ASSERT_EQ(avocado.textures.size(), 1u);  // the base colour, decoded from its buffer view
+    // Base colour (sRGB), metallic-roughness and normal (linear), decoded from their buffer views.
+    ASSERT_EQ(avocado.textures.size(), 3u);
     EXPECT_EQ(avocado.textures[0].width, 32);
+    EXPECT_TRUE(avocado.textures[0].srgb);
+    EXPECT_FALSE(avocado.textures[1].srgb || avocado.textures[2].srgb);
 }
 
 TEST(HostileGLTF, RegressionCorpusGivesItsErrors) {

@@ -211,13 +211,26 @@ TEST_F(SharedScenes, TriangleCountsMatchTheReadme) {
         Scene s = loadScene(file);
         EXPECT_EQ(s.triangleCount(), tris) << file;
     }
-    // WaterBottle's emission lives in a texture (not loaded): it is left out, with a warning,
-    // rather than the factor (1, 1, 1) lighting the whole bottle.
+    // WaterBottle's emission lives in a texture: the factor (1, 1, 1) times the sRGB texture,
+    // with every map of the material read (the maps' colour spaces as the spec gives them).
     Scene bottle = loadScene("water_bottle/WaterBottle.gltf");
-    for (auto& m : bottle.materials) EXPECT_EQ(m.emissive, glm::vec3(0.0f)) << m.name;
-    bool warned = false;
-    for (auto& w : bottle.warnings) warned |= w.find("emissive textures are not supported") != std::string::npos;
-    EXPECT_TRUE(warned);
+    ASSERT_EQ(bottle.materials.size(), 1u);
+    const Material& m = bottle.materials[0];
+    EXPECT_EQ(m.emissive, glm::vec3(1.0f));
+    ASSERT_GE(m.emissiveTexture, 0);
+    ASSERT_GE(m.normalTexture, 0);
+    ASSERT_GE(m.metallicRoughnessTexture, 0);
+    ASSERT_GE(m.occlusionTexture, 0);
+    EXPECT_TRUE(bottle.textures[size_t(m.emissiveTexture)].srgb);
+    EXPECT_TRUE(bottle.textures[size_t(m.baseColorTexture)].srgb);
+    EXPECT_FALSE(bottle.textures[size_t(m.normalTexture)].srgb);
+    EXPECT_FALSE(bottle.textures[size_t(m.metallicRoughnessTexture)].srgb);
+    EXPECT_TRUE(bottle.warnings.empty()) << bottle.warnings.front();
+    // The bottle has TANGENTs: every vertex carries a unit tangent with a sign.
+    for (const Vertex& v : bottle.vertices) {
+        ASSERT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-3f);
+        ASSERT_EQ(std::abs(v.tangent.w), 1.0f);
+    }
     Scene cornell = loadScene("cornell_box/CornellBox-Original.gltf");
     bool emissive = false;
     for (auto& m : cornell.materials) emissive |= m.emissive.x > 1.0f;  // Ke 17 via emissive strength

@@ -1,6 +1,6 @@
 // Parameter blocks (gi/gl/uniform_block.h): the C++ structs of shaders/ssao/ssao_shared.h,
 // shaders/envmap/envmap_shared.h, shaders/lpv/lpv_shared.h, shaders/volumetric/volumetric_shared.h,
-// shaders/render/render_shared.h and shaders/vct/vct_shared.h against the layout the driver gives
+// shaders/render/render_shared.h, shaders/vct/vct_shared.h and shaders/common/material_shared.h against the layout the driver gives
 // the linked programs' blocks (size, each member's offset, array and matrix strides), a block laid out differently caught by
 // that comparison, and a block a program names, binds or sizes differently from the host refused
 // at construction, at reload and at a recompile, with the shader and the block in the message.
@@ -207,6 +207,30 @@ TEST_F(ParamBlock, RenderLayoutMatchesTheDriver) {
         programs.emplace_back(frag, gl::fullscreenProgram(frag, (std::string("render/") + frag + ".frag").c_str()));
     for (const auto& [name, p] : programs) {
         std::vector<std::string> diffs = layoutDifferences(p.id(), kRenderBlockName, "uRender", sizeof(RenderParams), renderMembers());
+        EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);
+    }
+}
+
+// The per-draw material block (common/material_shared.h) in every program that draws the
+// scene's materials: G-buffer, both shadow variants, LPV's RSM and VCT's voxelization.
+TEST_F(ParamBlock, MaterialLayoutMatchesTheDriver) {
+    using T = MaterialParams;
+    std::vector<Member> members = {GI_MEMBER(T, baseColor),   GI_MEMBER(T, emissive),   GI_MEMBER(T, uvTransform),
+                                   GI_MEMBER(T, alphaCutoff), GI_MEMBER(T, alphaMode),  GI_MEMBER(T, roughness),
+                                   GI_MEMBER(T, metallic),    GI_MEMBER(T, normalScale), GI_MEMBER(T, occlusionStrength),
+                                   GI_MEMBER(T, textureMask), GI_MEMBER(T, doubleSided)};
+    std::vector<std::pair<std::string, gl::Program>> programs;
+    programs.emplace_back("gbuffer", gl::Program("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}));
+    for (const char* linear : {"LINEAR_DEPTH=0", "LINEAR_DEPTH=1"})
+        programs.emplace_back(linear, gl::Program("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"},
+                                                             {GL_FRAGMENT_SHADER, "render/shadow.frag"}}, {linear}));
+    programs.emplace_back("rsm", gl::Program("rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}));
+    programs.emplace_back("voxelize", gl::Program("voxelize", {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
+                                                               {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
+                                                               {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}));
+    for (const auto& [name, p] : programs) {
+        std::vector<std::string> diffs = layoutDifferences(p.id(), kMaterialBlockName, "uMaterialParams", sizeof(T), members);
         EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);
     }
 }

@@ -98,6 +98,7 @@ LPV::LPV()
     for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
                            &mResolveProg, &mShadeProg})
         mBlock.requireIn(*p);
+    mMaterialBinding.requireIn(mRSMProg);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
 }
 
@@ -203,21 +204,17 @@ void LPV::renderRSMs(const FrameContext& ctx) {
         for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
         const float one = 1.0f;
         glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
-        // The material changes per draw, so each draw uploads the block.
-        ctx.scene.draw([&](const Material& mat, int) {
-            LPVParams p{};
-            p.lightViewProj = m.viewProj;
-            p.lightIndex = int(li);
-            p.texelArea = m.texelArea;
-            p.texelSolidAngle = m.texelSolidAngle;
-            p.cubeFace = m.face >= 0 ? 1 : 0;
-            p.baseColor = mat.baseColor;
-            p.metallic = mat.metallic;
-            p.hasTexture = mat.baseColorTexture >= 0 ? 1 : 0;
-            p.alphaCutoff = mat.alphaMode == AlphaMode::Mask ? mat.alphaCutoff : -1.0f;
-            mBlock.set(p);
-            if (mat.baseColorTexture >= 0) glBindTextureUnit(kUnitBaseColor, ctx.scene.texture(mat.baseColorTexture));
-        });
+        LPVParams p{};
+        p.lightViewProj = m.viewProj;
+        p.lightIndex = int(li);
+        p.texelArea = m.texelArea;
+        p.texelSolidAngle = m.texelSolidAngle;
+        p.cubeFace = m.face >= 0 ? 1 : 0;
+        mBlock.set(p);
+        // The material changes per draw: its own block (common/material_shared.h).
+        mMaterialBinding.begin(0);
+        ctx.scene.draw([&](const Material& mat, int) { mMaterialBinding.bind(ctx.scene, mat); });
+        mMaterialBinding.end();
     };
     size_t index = 0;
     for (size_t li = 0; li < fs.lights.size(); ++li) {

@@ -56,6 +56,7 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/uniform_block.h"
+#include "gi/render/material_binding.h"
 #include "gi/render/pass.h"
 #include "lpv/lpv_shared.h"
 
@@ -121,6 +122,7 @@ private:
     gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mResolveProg,
         mShadeProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
+    MaterialBinding mMaterialBinding;  // the RSM pass reads it
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;
     std::vector<RSM> mRSMs;

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -294,14 +295,16 @@ struct PathTracer::Impl {
         float area;
     };
     struct Emission {
-        std::vector<glm::vec3> perTriangle;  // emitted radiance, 0 where none
+        std::vector<glm::vec3> perTriangle;  // mean emitted radiance (the area light's), 0 where none
+        std::vector<glm::vec3> scale;        // the area light's colour x intensity, 0 where none
         std::vector<EmissiveTriangle> triangles;
         std::vector<float> cdf;  // normalised, by power
         float power = 0.0f;      // sum of area * luminance
     };
-    Emission emission(const FrameSettings& fs) const {
+    Emission emissionTable(const FrameSettings& fs) const {
         Emission e;
         e.perTriangle.assign(scene.triangleCount(), glm::vec3(0.0f));
+        e.scale.assign(scene.triangleCount(), glm::vec3(0.0f));
         for (const LightSettings& l : fs.lights) {
             if (l.type != LightType::Area || l.emitter < 0 || size_t(l.emitter) >= scene.emitters.size()) continue;
             const gi::Emitter& em = scene.emitters[size_t(l.emitter)];
@@ -314,6 +317,7 @@ struct PathTracer::Impl {
                           p2 = scene.vertices[idx[2]].position;
                 float area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
                 e.perTriangle[size_t(tri)] = Le;
+                e.scale[size_t(tri)] = emissionScale(l);
                 e.triangles.push_back({tri, area});
                 e.power += area * luminance(Le);
                 e.cdf.push_back(e.power);
@@ -323,7 +327,6 @@ struct PathTracer::Impl {
         return e;
     }
     std::vector<int> triangleMaterial;
-    float srgbLut[256];
     // The last environment loaded, keyed by its file, so passes of one render load it once.
     mutable std::mutex environmentMutex;
     mutable std::string environmentFile;
@@ -338,32 +341,26 @@ struct PathTracer::Impl {
         return environmentLight;
     }
 
-    glm::vec4 sampleTexture(int texture, glm::vec2 uv) const {
-        const Texture& t = scene.textures[texture];
-        float x = (uv.x - std::floor(uv.x)) * float(t.width) - 0.5f;
-        float y = (uv.y - std::floor(uv.y)) * float(t.height) - 0.5f;
-        int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-        float fx = x - float(x0), fy = y - float(y0);
-        auto texel = [&](int xi, int yi) {
-            xi = ((xi % t.width) + t.width) % t.width;
-            yi = ((yi % t.height) + t.height) % t.height;
-            const uint8_t* p = &t.rgba[(size_t(yi) * t.width + xi) * 4];
-            return glm::vec4(srgbLut[p[0]], srgbLut[p[1]], srgbLut[p[2]], float(p[3]) / 255.0f);
-        };
-        return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+    // Interpolated texture coordinates (TEXCOORD_0, TEXCOORD_1) at barycentrics (u, v).
+    std::pair<glm::vec2, glm::vec2> uvAt(int triangle, float u, float v) const {
+        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
+        const Vertex &a = scene.vertices[idx[0]], &b = scene.vertices[idx[1]], &c = scene.vertices[idx[2]];
+        return {(1.0f - u - v) * a.uv + u * b.uv + v * c.uv, (1.0f - u - v) * a.uv1 + u * b.uv1 + v * c.uv1};
     }
 
-    glm::vec2 uvAt(int triangle, float u, float v) const {
-        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
-        return (1.0f - u - v) * scene.vertices[idx[0]].uv + u * scene.vertices[idx[1]].uv + v * scene.vertices[idx[2]].uv;
+    // A slot's texture of a material at a point, as common/material.glsl reads it.
+    glm::vec4 sampleSlot(const Material& m, int slot, const std::pair<glm::vec2, glm::vec2>& uv) const {
+        return sampleTexture(scene.textures[size_t(m.texture(slot))], m.uvTransform[slot].apply(uv.first, uv.second));
     }
 
     glm::vec4 baseColorAt(const Material& m, int triangle, float u, float v) const {
         glm::vec4 c = m.baseColor;
-        if (m.baseColorTexture >= 0) c *= sampleTexture(m.baseColorTexture, uvAt(triangle, u, v));
+        if (m.baseColorTexture >= 0) c *= sampleSlot(m, kSlotBaseColor, uvAt(triangle, u, v));
         return c;
     }
 
+    // Mask cuts below the cutoff; Blend is a stochastic mask, cut where alpha is below a
+    // threshold hashed from the hit (so a ray sees through alpha of the surface, on average).
     static void alphaFilter(const RTCFilterFunctionNArguments* args) {
         const auto* g = static_cast<const GeometryData*>(args->geometryUserPtr);
         const Impl& impl = *g->impl;
@@ -371,14 +368,23 @@ struct PathTracer::Impl {
         const Material& m = impl.scene.materials[d.material];
         for (unsigned i = 0; i < args->N; ++i) {
             if (args->valid[i] != -1) continue;
-            int tri = int(d.firstIndex / 3 + RTCHitN_primID(args->hit, args->N, i));
+            unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+            int tri = int(d.firstIndex / 3 + prim);
             float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-            if (impl.baseColorAt(m, tri, u, v).a < m.alphaCutoff) args->valid[i] = 0;
+            float alpha = impl.baseColorAt(m, tri, u, v).a;
+            float threshold = m.alphaCutoff;
+            if (m.alphaMode == AlphaMode::Blend) {
+                uint32_t ub, vb;
+                std::memcpy(&ub, &u, 4);
+                std::memcpy(&vb, &v, 4);
+                uint64_t h = mix64((uint64_t(prim) << 32) ^ (uint64_t(ub) << 16) ^ uint64_t(vb) ^ (uint64_t(d.material) << 48));
+                threshold = float(h >> 40) * 0x1p-24f * (1.0f - 1e-3f) + 1e-3f;
+            }
+            if (alpha < threshold) args->valid[i] = 0;
         }
     }
 
     explicit Impl(const Scene& s) : scene(s) {
-        for (int i = 0; i < 256; ++i) srgbLut[i] = srgbToLinear(float(i) / 255.0f);
         device = rtcNewDevice(nullptr);
         if (!device) throw Error("Embree: cannot create a device");
         rtc = rtcNewScene(device);
@@ -410,7 +416,7 @@ struct PathTracer::Impl {
                                                                        3 * sizeof(uint32_t), triCount));
             std::copy(local.begin(), local.end(), ib);
             geometries.push_back({this, int(di)});
-            if (m.alphaMode == AlphaMode::Mask) {
+            if (m.alphaMode != AlphaMode::Opaque) {
                 rtcSetGeometryUserData(geom, &geometries.back());
                 rtcSetGeometryIntersectFilterFunction(geom, alphaFilter);
                 rtcSetGeometryOccludedFilterFunction(geom, alphaFilter);
@@ -491,6 +497,24 @@ struct PathTracer::Impl {
         return len > 0.0f ? n / len : glm::vec3(0, 1, 0);
     }
 
+    // The shading normal N (already facing the viewer) bent by the material's normal map through
+    // the interpolated tangent frame, as materialNormal() in common/material.glsl.
+    glm::vec3 normalMapped(const Material& m, int triangle, float u, float v, const glm::vec3& N,
+                           const std::pair<glm::vec2, glm::vec2>& uv) const {
+        const uint32_t* idx = &scene.indices[size_t(triangle) * 3];
+        const Vertex &a = scene.vertices[idx[0]], &b = scene.vertices[idx[1]], &c = scene.vertices[idx[2]];
+        glm::vec4 tangent = (1.0f - u - v) * a.tangent + u * b.tangent + v * c.tangent;
+        glm::vec3 t = glm::vec3(tangent) - N * glm::dot(N, glm::vec3(tangent));
+        if (glm::dot(t, t) < 1e-12f) return N;
+        t = glm::normalize(t);
+        glm::vec3 bt = glm::cross(N, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+        glm::vec3 n = glm::vec3(sampleSlot(m, kSlotNormal, uv)) * 2.0f - 1.0f;
+        n.x *= m.normalScale;
+        n.y *= m.normalScale;
+        glm::vec3 bent = t * n.x + bt * n.y + N * n.z;
+        return glm::dot(bent, bent) > 1e-12f ? glm::normalize(bent) : N;
+    }
+
     // Offset along the geometric normal, scaled with the coordinates' magnitude so large scenes
     // (Sponza) and tiny ones (Avocado) both escape their own surface.
     static glm::vec3 offset(const glm::vec3& p, const glm::vec3& ng) {
@@ -552,18 +576,21 @@ struct PathTracer::Impl {
             glm::vec3 Ns = shadingNormal(h.triangle, h.u, h.v);
             glm::vec3 V = -d;
 
-            // Emission, on the side the shading normal points to.
+            std::pair<glm::vec2, glm::vec2> uv = uvAt(h.triangle, h.u, h.v);
+
+            // Emission, on the side the shading normal points to (both sides when double-sided,
+            // as the raster's G-buffer), times its area light's scale.
             const glm::vec3 Le = em.perTriangle[size_t(h.triangle)];
-            if (luminance(Le) > 0.0f && glm::dot(Ns, V) > 0.0f) {
+            if (luminance(Le) > 0.0f && (m.doubleSided || glm::dot(Ns, V) > 0.0f)) {
                 bool counts = bounce <= 1 ? countDirect : countIndirect;
                 if (counts) {
                     float w = 1.0f;
                     if (bounce > 0) {
-                        float cosLight = glm::dot(Ns, V);
+                        float cosLight = std::abs(glm::dot(Ns, V));
                         float pdfLight = luminance(Le) / em.power * h.t * h.t / cosLight;
                         w = powerHeuristic(prevPdf, pdfLight);
                     }
-                    L += beta * Le * w;
+                    L += beta * emission(scene, m, uv.first, uv.second) * em.scale[size_t(h.triangle)] * w;
                 }
             }
             if (bounce >= rs.maxBounces) break;
@@ -572,11 +599,20 @@ struct PathTracer::Impl {
             // Two-sided shading: normals face the incoming ray.
             glm::vec3 Ng = glm::dot(h.Ng, V) < 0.0f ? -h.Ng : h.Ng;
             if (glm::dot(Ns, Ng) < 0.0f) Ns = -Ns;
-            glm::vec4 base = baseColorAt(m, h.triangle, h.u, h.v);
+            // The material model of common/material.glsl: normal map, metallic-roughness texture.
+            if (m.normalTexture >= 0) Ns = normalMapped(m, h.triangle, h.u, h.v, Ns, uv);
+            glm::vec4 base = m.baseColor;
+            if (m.baseColorTexture >= 0) base *= sampleSlot(m, kSlotBaseColor, uv);
+            float roughness = m.roughness, metallic = m.metallic;
+            if (m.metallicRoughnessTexture >= 0) {
+                glm::vec4 mr = sampleSlot(m, kSlotMetallicRoughness, uv);
+                roughness *= mr.g;
+                metallic *= mr.b;
+            }
             Surface s;
             s.baseColor = glm::vec3(base);
-            s.metallic = m.metallic;
-            s.alpha = std::max(m.roughness * m.roughness, 0.002f);
+            s.metallic = metallic;
+            s.alpha = std::max(roughness * roughness, 0.002f);
             s.specular = fs.render.specular;
             BSDF bsdf(s, Ns, V);
             glm::vec3 Po = offset(P, Ng);
@@ -668,7 +704,9 @@ struct PathTracer::Impl {
         if (dist2 <= 0.0f) return glm::vec3(0.0f);
         float dist = std::sqrt(dist2);
         glm::vec3 Ldir = toL / dist;
+        const Material& m = scene.materials[size_t(triangleMaterial[size_t(e.triangle)])];
         float cosLight = glm::dot(Nl, -Ldir);
+        if (m.doubleSided) cosLight = std::abs(cosLight);
         float NoL = glm::dot(Ns, Ldir);
         if (cosLight <= 0.0f || NoL <= 0.0f || glm::dot(Ng, Ldir) <= 0.0f) return glm::vec3(0.0f);
         const glm::vec3 Le = em.perTriangle[size_t(e.triangle)];
@@ -678,7 +716,8 @@ struct PathTracer::Impl {
         ++rays;
         if (occluded(Po, Ldir, dist * (1.0f - 1e-3f))) return glm::vec3(0.0f);
         float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
-        return f * NoL * Le * w / pdfLight;
+        auto uv = uvAt(e.triangle, b1, b2);
+        return f * NoL * emission(scene, m, uv.first, uv.second) * em.scale[size_t(e.triangle)] * w / pdfLight;
     }
 
     // Next-event estimation of the environment: a direction drawn from its luminance, an
@@ -725,7 +764,7 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
         env.skybox = fs.environment.skybox;
         env.sampled = mEnvironmentSampling;
     }
-    const Impl::Emission emission = mImpl->emission(fs);
+    const Impl::Emission emission = mImpl->emissionTable(fs);
     std::atomic<bool> cancelled{false};
     tbb::parallel_for(tbb::blocked_range2d<int>(0, h, 16, 0, w, 16), [&](const tbb::blocked_range2d<int>& r) {
         if (cancel && cancel->load()) {

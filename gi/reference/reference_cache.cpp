@@ -115,10 +115,17 @@ uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const Referen
         h.value(m.alphaMode);
         h.value(m.alphaCutoff);
         h.value(m.doubleSided);
+        for (int slot = 0; slot < kSlotCount; ++slot) {
+            h.value(m.texture(slot));
+            h.value(m.uvTransform[slot]);
+        }
+        h.value(m.normalScale);
+        h.value(m.occlusionStrength);
     }
     for (const Texture& t : scene.textures) {
         h.value(t.width);
         h.value(t.height);
+        h.value(t.srgb);
         h.bytes(t.rgba.data(), t.rgba.size());
     }
     // Settings go in through the settings table, so a field added there is never missed here.

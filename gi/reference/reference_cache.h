@@ -17,7 +17,7 @@
 
 namespace gi {
 
-inline constexpr int kReferenceVersion = 2;
+inline constexpr int kReferenceVersion = 3;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend)
 
 uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
 

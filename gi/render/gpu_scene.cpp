@@ -22,16 +22,19 @@ GPUScene::GPUScene(const Scene& scene)
     mVAO = gl::VertexArray(vao);
     glVertexArrayVertexBuffer(vao, 0, mVertices.id(), 0, sizeof(Vertex));
     glVertexArrayElementBuffer(vao, mIndices.id());
-    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv)};
-    const GLint sizes[3] = {3, 3, 2};
-    for (GLuint a = 0; a < 3; ++a) {
+    // Attribute locations 0..4 as the scene shaders declare them: position, normal, uv, tangent, uv1.
+    const GLuint offsets[5] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv), offsetof(Vertex, tangent),
+                               offsetof(Vertex, uv1)};
+    const GLint sizes[5] = {3, 3, 2, 4, 2};
+    for (GLuint a = 0; a < 5; ++a) {
         glEnableVertexArrayAttrib(vao, a);
         glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
         glVertexArrayAttribBinding(vao, a, 0);
     }
     for (const Texture& t : scene.textures) {
         int levels = 1 + int(std::floor(std::log2(std::max(t.width, t.height))));
-        gl::Texture tex = gl::Texture::create2D(GL_SRGB8_ALPHA8, t.width, t.height, levels);
+        // Colour (base colour, emission) is sRGB, data maps (metallic-roughness, occlusion, normal) linear.
+        gl::Texture tex = gl::Texture::create2D(t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width, t.height, levels);
         glTextureSubImage2D(tex.id(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
         glGenerateTextureMipmap(tex.id());
         mBytes += tex.bytes();

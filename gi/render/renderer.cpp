@@ -64,6 +64,7 @@ Renderer::Renderer()
       mBlock(kRenderBlockName, kRenderBlockBinding) {
     for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
+    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
     for (const PassInfo& info : passRegistry())
         if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
@@ -296,18 +297,15 @@ void Renderer::renderShadows(const FrameSettings& fs) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mShadowSize, mShadowSize);
-    glBindSampler(kUnitBaseColor, mMaterialSampler.id());
+    mMaterialBinding.begin(mMaterialSampler.id());
 
-    // `params` holds the face's projection; the material fields are filled per draw.
+    // `params` holds the face's projection; the material block is uploaded per draw.
     auto drawScene = [&](RenderParams& params) {
+        // Per draw: the draw's first triangle (an area light's map leaves its own surface out).
         mScene->draw([&](const Material& m, int, int firstTriangle) {
             params.firstTriangle = firstTriangle;
-            bool mask = m.alphaMode == AlphaMode::Mask;
-            params.alphaCutoff = mask ? m.alphaCutoff : -1.0f;
-            params.baseColor = m.baseColor;
-            params.hasTexture = mask && m.baseColorTexture >= 0 ? 1 : 0;
             mBlock.set(params);
-            glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
+            mMaterialBinding.bind(*mScene, m);
         });
     };
 
@@ -341,7 +339,7 @@ void Renderer::renderShadows(const FrameSettings& fs) {
             drawScene(params);
         }
     }
-    glBindSampler(kUnitBaseColor, 0);
+    mMaterialBinding.end();
 }
 
 void Renderer::renderGBuffer(const glm::mat4& viewProj) {
@@ -360,19 +358,14 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     mGBufferProg.use();
     RenderParams params{};
     params.viewProj = viewProj;
-    glBindSampler(kUnitBaseColor, mMaterialSampler.id());
+    mMaterialBinding.begin(mMaterialSampler.id());
+    // Per draw: the draw's first triangle (to find each triangle's emitter) and the material.
     mScene->draw([&](const Material& m, int, int firstTriangle) {
         params.firstTriangle = firstTriangle;
-        params.baseColor = m.baseColor;
-        params.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
-        params.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
-        params.roughness = m.roughness;
-        params.metallic = m.metallic;
-        params.emissive = glm::vec4(m.emissive, 0.0f);
         mBlock.set(params);
-        glBindTextureUnit(kUnitBaseColor, m.baseColorTexture >= 0 ? mScene->texture(m.baseColorTexture) : mWhite.id());
+        mMaterialBinding.bind(*mScene, m);
     });
-    glBindSampler(kUnitBaseColor, 0);
+    mMaterialBinding.end();
 }
 
 void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx) {

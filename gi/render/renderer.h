@@ -19,6 +19,7 @@
 #include "gi/gl/uniform_block.h"
 #include "gi/render/gpu_scene.h"
 #include "gi/render/lights.h"
+#include "gi/render/material_binding.h"
 #include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
 #include "gi/scene/camera.h"
@@ -118,6 +119,7 @@ private:
     std::unique_ptr<GPUScene> mScene;
     gl::Program mGBufferProg, mShadowProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
     gl::UniformBlock<shared::RenderParams> mBlock;  // every program above reads it
+    MaterialBinding mMaterialBinding;  // the G-buffer and shadow programs read it
     gl::VertexArray mEmptyVAO;
     gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler, mLUTSampler;
     gl::Sampler mMipPointSampler;  // views of one mip (cube maps): nearest texels of the chosen level

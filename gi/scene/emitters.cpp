@@ -25,7 +25,34 @@ struct Tri {
     glm::vec3 p[3];  // front-wound
     glm::vec3 centre;
     float area;
+    glm::vec3 radiance;  // the material's emission, its texture's mean over the triangle
 };
+
+// Mean emission of the material over triangle t: the emissive factor times the emissive
+// texture's mean over kEmissionSamples stratified points (the exact factor without a texture).
+constexpr int kEmissionSamplesPerSide = 4;
+glm::vec3 meanEmission(const Scene& scene, const Material& m, uint32_t t) {
+    if (m.emissiveTexture < 0) return m.emissive;
+    const uint32_t* idx = &scene.indices[size_t(t) * 3];
+    const Vertex& a = scene.vertices[idx[0]];
+    const Vertex& b = scene.vertices[idx[1]];
+    const Vertex& c = scene.vertices[idx[2]];
+    glm::vec3 sum(0.0f);
+    int n = 0;
+    // Points of a regular grid over the unit square folded into the triangle.
+    for (int j = 0; j < kEmissionSamplesPerSide; ++j)
+        for (int i = 0; i < kEmissionSamplesPerSide; ++i) {
+            float u = (float(i) + 0.5f) / kEmissionSamplesPerSide, v = (float(j) + 0.5f) / kEmissionSamplesPerSide;
+            if (u + v > 1.0f) {
+                u = 1.0f - u;
+                v = 1.0f - v;
+            }
+            float w = 1.0f - u - v;
+            sum += emission(scene, m, w * a.uv + u * b.uv + v * c.uv, w * a.uv1 + u * b.uv1 + v * c.uv1);
+            ++n;
+        }
+    return sum / float(n);
+}
 
 // Splits `tris` (one connected surface) into parts of at most `most` triangles.
 void split(std::vector<Tri> tris, size_t most, std::vector<std::vector<Tri>>& out) {
@@ -67,6 +94,8 @@ void buildEmitters(Scene& scene) {
             glm::vec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
             tri.area = 0.5f * glm::length(ng);
             if (!(tri.area > 0.0f)) continue;
+            tri.radiance = meanEmission(scene, m, t);
+            if (luminance(tri.radiance) <= 0.0f) continue;  // a dark part of an emissive texture
             glm::vec3 ns = scene.vertices[idx[0]].normal + scene.vertices[idx[1]].normal + scene.vertices[idx[2]].normal;
             if (glm::dot(ng, ns) < 0.0f) std::swap(tri.p[1], tri.p[2]);
             tri.centre = (tri.p[0] + tri.p[1] + tri.p[2]) / 3.0f;
@@ -114,10 +143,10 @@ void buildEmitters(Scene& scene) {
         for (const Tri& t : parts[k]) {
             e.triangles.push_back(t.index);
             e.corners.insert(e.corners.end(), {t.p[0], t.p[1], t.p[2]});
-            e.radiance.push_back(m.emissive);
+            e.radiance.push_back(t.radiance);
             e.area += t.area;
             e.centroid += t.centre * t.area;
-            e.power += m.emissive * t.area;
+            e.power += t.radiance * t.area;
             normal += glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
         }
         e.centroid /= e.area;

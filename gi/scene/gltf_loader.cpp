@@ -15,6 +15,13 @@
 //   4. accessors are read with range checks written so that offset + length cannot wrap, and
 //      with the spec's alignment rules; sparse accessors are applied per the spec.
 // Every failure is a gi::Error of one line that names the file and the element at fault.
+//
+// Materials are read whole (README "Materials"): each texture reference is range-checked and
+// decoded in its slot's colour space (base colour and emissive sRGB, the others linear; an image
+// used both ways is decoded twice, each counted), with its texCoord (0 or 1; a larger set leaves
+// the texture out with a warning) and KHR_texture_transform. Alpha mode BLEND is kept and drawn
+// everywhere as a dithered mask. Primitives whose material has a normal map get tangents: the
+// file's TANGENT, else per-vertex tangents derived from the normal map's texture coordinates.
 #include "gi/scene/scene.h"
 #include "gi/util/budget.h"
 #include "gi/util/error.h"
@@ -272,7 +279,7 @@ private:
     std::string mFile;
     Scene& mScene;
     MemoryBudget& mBudget;
-    std::map<int, int> mImageToTexture;
+    std::map<std::pair<int, bool>, int> mImageToTexture;  // (image, sRGB) to scene texture
     std::vector<Instance> mInstances;
     size_t mNodeVisits = 0;
     int mDefaultMaterial = -1;
@@ -452,7 +459,8 @@ private:
                 meshVerts[m] += out;
                 meshTris[m] += tris;
                 meshBytes[m] += out * double(sizeof(Vertex)) + tris * 3.0 * 4.0 * 2.0;
-                meshTemp[m] = std::max(meshTemp[m], verts * (3.0 + 3.0 + 2.0) * 4.0 + idx * 4.0 + tris * 12.0);
+                // POSITION, NORMAL, two TEXCOORDs and TANGENT (read or derived, with its sums).
+                meshTemp[m] = std::max(meshTemp[m], verts * (3.0 + 3.0 + 2.0 + 2.0 + 4.0 + 4.0) * 4.0 + idx * 4.0 + tris * 12.0);
             }
         double bytes = 0.0, temp = 0.0, verts = 0.0, tris = 0.0, primitives = 0.0;
         for (const Instance& inst : mInstances) {
@@ -472,16 +480,19 @@ private:
         if (verts >= 4294967296.0) fail("the scene would hold " + str(size_t(verts)) + " vertices (at most 2^32 - 1)");
     }
 
-    int textureFor(int textureIndex) {
+    // The scene texture of glTF texture `textureIndex` decoded as sRGB or linear data (an image
+    // used both ways becomes two textures). `where` names the material's slot in messages.
+    int textureFor(int textureIndex, bool srgb, const std::string& where) {
         if (textureIndex < 0) return -1;
         if (textureIndex >= int(mModel.textures.size()))
-            fail("texture " + std::to_string(textureIndex) + " does not exist");
+            fail(where + ": texture " + std::to_string(textureIndex) + " does not exist");
         int source = mModel.textures[size_t(textureIndex)].source;
         if (source < 0 || source >= int(mModel.images.size())) {
             mScene.warnings.push_back("texture " + std::to_string(textureIndex) + " has no usable image; ignored");
             return -1;
         }
-        auto it = mImageToTexture.find(source);
+        auto key = std::make_pair(source, srgb);
+        auto it = mImageToTexture.find(key);
         if (it != mImageToTexture.end()) return it->second;
         tinygltf::Image& img = mModel.images[size_t(source)];
         // The image callback kept the encoded bytes (none when an external file was missing).
@@ -490,13 +501,57 @@ private:
         if (img.image.empty() || !decodeImage(img.image.data(), img.image.size(), source, mBudget, t, warning)) {
             mScene.warnings.push_back((warning.empty() ? "image " + std::to_string(source) + " has no data" : warning) +
                                       (img.uri.empty() ? "" : " ('" + img.uri + "')") + "; its texture is left out");
-            mImageToTexture[source] = -1;
+            mImageToTexture[key] = -1;
             return -1;
         }
         t.name = img.name.empty() ? img.uri : img.name;
-        img.image = {};
+        t.srgb = srgb;
+        // Keep the encoded bytes while the other colour space may still ask for them.
+        if (mImageToTexture.count(std::make_pair(source, !srgb))) img.image = {};
         mScene.textures.push_back(std::move(t));
-        return mImageToTexture[source] = int(mScene.textures.size()) - 1;
+        return mImageToTexture[key] = int(mScene.textures.size()) - 1;
+    }
+
+    // A material's texture reference: its texture (decoded in the slot's colour space), its
+    // texCoord and KHR_texture_transform. Returns the scene texture, -1 for none.
+    int textureInfo(size_t material, const char* slotName, int slot, int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+                    Material& out) {
+        if (index < 0) return -1;
+        std::string where = "material " + std::to_string(material) + " " + slotName;
+        TextureTransform& tt = out.uvTransform[slot];
+        auto ext = extensions.find("KHR_texture_transform");
+        if (ext != extensions.end() && ext->second.IsObject()) {
+            const tinygltf::Value& v = ext->second;
+            auto number = [&](const tinygltf::Value& x, const char* key) {
+                if (!x.IsNumber()) fail(where + ": KHR_texture_transform " + key + " is not a number");
+                double d = x.GetNumberAsDouble();
+                if (!std::isfinite(d) || std::abs(d) > 1e30) fail(where + ": KHR_texture_transform " + key + " is not finite");
+                return float(d);
+            };
+            auto pair = [&](const char* key, glm::vec2& dst) {
+                if (!v.Has(key)) return;
+                const tinygltf::Value& a = v.Get(key);
+                if (!a.IsArray() || a.ArrayLen() != 2) fail(where + ": KHR_texture_transform " + key + " is not an array of 2 numbers");
+                dst = glm::vec2(number(a.Get(0), key), number(a.Get(1), key));
+            };
+            pair("offset", tt.offset);
+            pair("scale", tt.scale);
+            if (v.Has("rotation")) tt.rotation = number(v.Get("rotation"), "rotation");
+            if (v.Has("texCoord")) {
+                const tinygltf::Value& c = v.Get("texCoord");
+                if (!c.IsInt()) fail(where + ": KHR_texture_transform texCoord is not an integer");
+                texCoord = c.GetNumberAsInt();
+            }
+        }
+        if (texCoord < 0) fail(where + ": texCoord " + std::to_string(texCoord) + " is negative");
+        if (texCoord > 1) {
+            mScene.warnings.push_back(where + ": texCoord " + std::to_string(texCoord) +
+                                      " (TEXCOORD_0 and TEXCOORD_1 are supported); the texture is left out");
+            return -1;
+        }
+        tt.texCoord = texCoord;
+        bool srgb = slot == kSlotBaseColor || slot == kSlotEmissive;
+        return textureFor(index, srgb, where);
     }
 
     void loadMaterials() {
@@ -506,7 +561,23 @@ private:
             out.name = m.name.empty() ? "material" + std::to_string(i) : m.name;
             const auto& pbr = m.pbrMetallicRoughness;
             for (int c = 0; c < 4 && c < int(pbr.baseColorFactor.size()); ++c) out.baseColor[c] = float(pbr.baseColorFactor[c]);
-            out.baseColorTexture = textureFor(pbr.baseColorTexture.index);
+            out.baseColorTexture = textureInfo(i, "baseColorTexture", kSlotBaseColor, pbr.baseColorTexture.index,
+                                               pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions, out);
+            out.metallicRoughnessTexture =
+                textureInfo(i, "metallicRoughnessTexture", kSlotMetallicRoughness, pbr.metallicRoughnessTexture.index,
+                            pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions, out);
+            out.normalTexture = textureInfo(i, "normalTexture", kSlotNormal, m.normalTexture.index, m.normalTexture.texCoord,
+                                            m.normalTexture.extensions, out);
+            out.occlusionTexture = textureInfo(i, "occlusionTexture", kSlotOcclusion, m.occlusionTexture.index,
+                                               m.occlusionTexture.texCoord, m.occlusionTexture.extensions, out);
+            out.emissiveTexture = textureInfo(i, "emissiveTexture", kSlotEmissive, m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                              m.emissiveTexture.extensions, out);
+            out.normalScale = float(m.normalTexture.scale);
+            out.occlusionStrength = float(m.occlusionTexture.strength);
+            if (!std::isfinite(out.normalScale) || std::abs(out.normalScale) > 1e6f)
+                fail("material " + std::to_string(i) + ": normalTexture scale is not finite");
+            if (!std::isfinite(out.occlusionStrength)) fail("material " + std::to_string(i) + ": occlusionTexture strength is not finite");
+            out.occlusionStrength = std::clamp(out.occlusionStrength, 0.0f, 1.0f);
             out.metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
             out.roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
             for (int c = 0; c < 3 && c < int(m.emissiveFactor.size()); ++c) out.emissive[c] = float(m.emissiveFactor[c]);
@@ -515,15 +586,8 @@ private:
                 const auto& s = ext->second.Get("emissiveStrength");
                 if (s.IsNumber()) out.emissive *= float(s.GetNumberAsDouble());
             }
-            if (m.emissiveTexture.index >= 0 && glm::length(out.emissive) > 0.0f) {
-                // The factor only scales the texture, which holds the pattern: emitting the bare
-                // factor would light the whole surface. Emissive textures are not loaded yet.
-                out.emissive = glm::vec3(0.0f);
-                mScene.warnings.push_back("material '" + out.name +
-                                          "': emissive textures are not supported; its emission is left out");
-            }
             if (m.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
-            else if (m.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
+            else if (m.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;  // drawn as a dithered mask (AlphaMode)
             out.alphaCutoff = float(m.alphaCutoff);
             if (!std::isfinite(out.alphaCutoff)) fail("material " + std::to_string(i) + ": non-finite alphaCutoff");
             out.doubleSided = m.doubleSided;
@@ -637,6 +701,85 @@ private:
         mScene.lights.push_back(out);
     }
 
+    // TEXCOORD_<set> of a primitive, empty when absent or past the range where coordinates
+    // still address texels.
+    std::vector<float> readTexCoords(const tinygltf::Primitive& prim, int set, const std::string& where, size_t vertexCount) {
+        std::string name = "TEXCOORD_" + std::to_string(set);
+        auto it = prim.attributes.find(name);
+        if (it == prim.attributes.end()) return {};
+        std::vector<float> uv = read<float>(it->second, 2, name.c_str(), vertexCount);
+        float largest = 0.0f;
+        for (float f : uv) largest = std::max(largest, std::abs(f));
+        if (largest > kMaxTexCoord) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf, ": %s texture coordinates reach %g, past +-2^23 where they address no texel; ignored", name.c_str(),
+                          double(largest));
+            warnOnce(where + buf);
+            uv.clear();
+        }
+        return uv;
+    }
+
+    // The tangent (xyz: the direction of increasing u) and bitangent sign (w) of a triangle in
+    // its own space, from the change of its texture coordinates along its edges (Lengyel 2001);
+    // zero where the mapping is degenerate.
+    static glm::vec4 triangleTangent(const glm::vec3 p[3], const glm::vec2 tc[3]) {
+        glm::vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+        glm::vec2 d1 = tc[1] - tc[0], d2 = tc[2] - tc[0];
+        float det = d1.x * d2.y - d2.x * d1.y;
+        if (!(std::abs(det) > 1e-20f)) return glm::vec4(0.0f);
+        float r = 1.0f / det;
+        glm::vec3 t = (e1 * d2.y - e2 * d1.y) * r;
+        glm::vec3 b = (e2 * d1.x - e1 * d2.x) * r;
+        glm::vec3 n = glm::cross(e1, e2);
+        if (!std::isfinite(t.x + t.y + t.z + b.x + b.y + b.z)) return glm::vec4(0.0f);
+        // glTF's bitangent, cross(normal, tangent) * w, points up the image: towards decreasing v.
+        return glm::vec4(t, glm::dot(glm::cross(n, t), b) > 0.0f ? -1.0f : 1.0f);
+    }
+
+    // Per-vertex tangents for a primitive without TANGENT: each triangle's unit tangent, weighted
+    // by its area, summed at its corners; the area-weighted sum of the triangles' bitangent signs
+    // decides each vertex's handedness. Orthogonalised against the normal later.
+    static std::vector<float> deriveTangents(const std::vector<float>& pos, const std::vector<float>& nrm, const std::vector<float>& uv,
+                                             const std::vector<uint32_t>& tris) {
+        size_t n = pos.size() / 3;
+        std::vector<glm::vec3> t(n, glm::vec3(0.0f));
+        std::vector<float> sign(n, 0.0f);
+        if (uv.empty()) return std::vector<float>(n * 4, 0.0f);
+        for (size_t k = 0; k + 2 < tris.size(); k += 3) {
+            glm::vec3 p[3];
+            glm::vec2 tc[3];
+            for (int c = 0; c < 3; ++c) {
+                uint32_t i = tris[k + size_t(c)];
+                p[c] = glm::vec3(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2]);
+                tc[c] = glm::vec2(uv[i * 2], uv[i * 2 + 1]);
+            }
+            glm::vec4 tb = triangleTangent(p, tc);
+            float area = 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+            glm::vec3 dir = glm::length(glm::vec3(tb)) > 0.0f ? glm::normalize(glm::vec3(tb)) : glm::vec3(0.0f);
+            for (int c = 0; c < 3; ++c) {
+                uint32_t i = tris[k + size_t(c)];
+                t[i] += dir * area;
+                sign[i] += tb.w * area;
+            }
+        }
+        std::vector<float> out(n * 4);
+        for (size_t i = 0; i < n; ++i) {
+            glm::vec3 nn(nrm[i * 3], nrm[i * 3 + 1], nrm[i * 3 + 2]);
+            glm::vec3 ti = t[i];
+            if (!(glm::length(ti) > 0.0f) || !std::isfinite(ti.x + ti.y + ti.z)) {
+                // No usable mapping here: any tangent perpendicular to the normal.
+                glm::vec3 a = std::abs(nn.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+                ti = glm::cross(a, nn);
+            }
+            out[i * 4] = ti.x;
+            out[i * 4 + 1] = ti.y;
+            out[i * 4 + 2] = ti.z;
+            out[i * 4 + 3] = sign[i] < 0.0f ? -1.0f : 1.0f;
+        }
+        return out;
+    }
+
     void addPrimitive(const tinygltf::Primitive& prim, int meshIndex, int primIndex, const glm::mat4& world) {
         std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primIndex);
         if (prim.mode >= 0 && prim.mode <= 3) {
@@ -648,7 +791,7 @@ private:
         if (posIt == prim.attributes.end()) fail(where + " has no POSITION attribute");
         std::vector<float> pos = read<float>(posIt->second, 3, "POSITION");
         size_t vertexCount = pos.size() / 3;
-        std::vector<float> nrm, uv;
+        std::vector<float> nrm;
         if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
             nrm = read<float>(it->second, 3, "NORMAL", vertexCount);
         }
@@ -656,20 +799,19 @@ private:
         if (material >= int(mModel.materials.size()))
             fail(where + ": material " + std::to_string(material) + " does not exist");
         if (material < 0) material = defaultMaterial();
-        int texCoord = 0;
-        if (material < int(mModel.materials.size()))
-            texCoord = mModel.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture.texCoord;
-        if (auto it = prim.attributes.find("TEXCOORD_" + std::to_string(texCoord)); it != prim.attributes.end()) {
-            uv = read<float>(it->second, 2, "TEXCOORD", vertexCount);
-            float largest = 0.0f;
-            for (float f : uv) largest = std::max(largest, std::abs(f));
-            if (largest > kMaxTexCoord) {
-                char buf[160];
-                std::snprintf(buf, sizeof buf, ": texture coordinates reach %g, past +-2^23 where they address no texel; ignored", double(largest));
-                warnOnce(where + buf);
-                uv.clear();
-            }
-        }
+        const Material& mat = mScene.materials[size_t(material)];
+        bool needsUV1 = false;
+        for (int slot = 0; slot < kSlotCount; ++slot) needsUV1 |= mat.texture(slot) >= 0 && mat.uvTransform[slot].texCoord == 1;
+        std::vector<float> uv = readTexCoords(prim, 0, where, vertexCount);
+        std::vector<float> uv1 = needsUV1 ? readTexCoords(prim, 1, where, vertexCount) : std::vector<float>();
+        if (needsUV1 && uv1.empty()) warnOnce(where + ": a texture of its material reads TEXCOORD_1, which it lacks; it reads (0, 0)");
+        // Normal maps need tangents: the file's TANGENT (w the handedness), else derived from
+        // the coordinates the normal map reads.
+        std::vector<float> tan;
+        bool needsTangents = mat.normalTexture >= 0;
+        if (needsTangents && !nrm.empty())
+            if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) tan = read<float>(it->second, 4, "TANGENT", vertexCount);
+        const std::vector<float>& tangentUV = mat.uvTransform[kSlotNormal].texCoord == 1 ? uv1 : uv;
 
         std::vector<uint32_t> idx;
         if (prim.indices >= 0) {
@@ -708,6 +850,17 @@ private:
             return p;
         };
 
+        auto texCoord = [](const std::vector<float>& t, uint32_t i) { return t.empty() ? glm::vec2(0.0f) : glm::vec2(t[i * 2], t[i * 2 + 1]); };
+        glm::mat3 tangentMatrix(world);
+        float handedness = flip ? -1.0f : 1.0f;  // a mirroring transform swaps the bitangent's side
+        auto worldTangent = [&](glm::vec3 t, float w, const glm::vec3& n) {
+            t = tangentMatrix * t;
+            t -= n * glm::dot(n, t);
+            float len = glm::length(t);
+            if (!(len > 1e-20f) || !std::isfinite(len)) return glm::vec4(0.0f);
+            return glm::vec4(t / len, (w < 0.0f ? -1.0f : 1.0f) * handedness);
+        };
+
         uint32_t firstIndex = uint32_t(mScene.indices.size());
         if (nrm.empty()) {
             // No normals: flat shading, one vertex per triangle corner (as the spec asks).
@@ -717,23 +870,36 @@ private:
                 float len = glm::length(n);
                 n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
                 if (flip) n = -n;
+                glm::vec4 tangent(0.0f);
+                if (needsTangents) {
+                    glm::vec3 local[3];
+                    glm::vec2 tc[3];
+                    for (int k = 0; k < 3; ++k) {
+                        uint32_t i = tris[t + size_t(k)];
+                        local[k] = glm::vec3(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2]);
+                        tc[k] = texCoord(tangentUV, i);
+                    }
+                    glm::vec4 tb = triangleTangent(local, tc);
+                    tangent = worldTangent(glm::vec3(tb), tb.w, n);
+                }
                 uint32_t base = uint32_t(mScene.vertices.size());
                 for (int k = 0; k < 3; ++k) {
                     uint32_t i = tris[t + size_t(k)];
-                    glm::vec2 tc = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uv[i * 2], uv[i * 2 + 1]);
-                    mScene.vertices.push_back({p[k], n, tc});
+                    mScene.vertices.push_back({p[k], n, texCoord(uv, i), tangent, texCoord(uv1, i)});
                 }
                 if (flip) mScene.indices.insert(mScene.indices.end(), {base, base + 2, base + 1});
                 else mScene.indices.insert(mScene.indices.end(), {base, base + 1, base + 2});
             }
         } else {
+            if (needsTangents && tan.empty()) tan = deriveTangents(pos, nrm, tangentUV, tris);
             uint32_t base = uint32_t(mScene.vertices.size());
             for (size_t i = 0; i < vertexCount; ++i) {
                 glm::vec3 n = normalMatrix * glm::vec3(nrm[i * 3], nrm[i * 3 + 1], nrm[i * 3 + 2]);
                 float len = glm::length(n);
                 n = len > 1e-20f && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
-                glm::vec2 tc = uv.empty() ? glm::vec2(0.0f) : glm::vec2(uv[i * 2], uv[i * 2 + 1]);
-                mScene.vertices.push_back({transformPos(uint32_t(i)), n, tc});
+                glm::vec4 tangent(0.0f);
+                if (!tan.empty()) tangent = worldTangent(glm::vec3(tan[i * 4], tan[i * 4 + 1], tan[i * 4 + 2]), tan[i * 4 + 3], n);
+                mScene.vertices.push_back({transformPos(uint32_t(i)), n, texCoord(uv, uint32_t(i)), tangent, texCoord(uv1, uint32_t(i))});
             }
             for (size_t t = 0; t + 2 < tris.size(); t += 3) {
                 if (flip) mScene.indices.insert(mScene.indices.end(), {base + tris[t], base + tris[t + 2], base + tris[t + 1]});
@@ -788,7 +954,7 @@ Scene parse(const std::vector<uint8_t>& bytes, bool binary, const std::string& f
         throw Error(file + ": malformed glTF: " + (msg.empty() ? "unknown error" : msg));
     }
     for (const auto& e : model.extensionsRequired)
-        if (e != "KHR_lights_punctual" && e != "KHR_materials_emissive_strength")
+        if (e != "KHR_lights_punctual" && e != "KHR_materials_emissive_strength" && e != "KHR_texture_transform")
             throw Error(file + ": requires unsupported extension " + e);
 
     Scene scene;

@@ -18,10 +18,31 @@ namespace gi {
 struct Vertex {
     glm::vec3 position;
     glm::vec3 normal;
-    glm::vec2 uv;
+    glm::vec2 uv;                 // TEXCOORD_0
+    glm::vec4 tangent{0.0f};      // xyz: world tangent, w: bitangent sign (+-1); all 0 where no material needs one
+    glm::vec2 uv1{0.0f};          // TEXCOORD_1, read where a material's texture asks for it
 };
 
+// Blend is drawn as a dithered mask everywhere (raster G-buffer, shadow maps, RSMs,
+// voxelization: a per-pixel threshold; the path tracer: a per-ray one): a fragment whose alpha
+// is below the threshold is cut out, so coverage averages to alpha without sorting.
 enum class AlphaMode { Opaque, Mask, Blend };
+
+// The textures of a glTF metallic-roughness material, in the order of the texture units
+// (kUnitBaseColor + slot) and of MaterialParams::uvTransform (common/material_shared.h).
+enum TextureSlot { kSlotBaseColor = 0, kSlotMetallicRoughness, kSlotNormal, kSlotOcclusion, kSlotEmissive, kSlotCount };
+
+// Which texture coordinates a texture reads and KHR_texture_transform's affine map of them:
+// uv' = offset + rotate(rotation) * (scale * uv), as the extension defines it.
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians, counter-clockwise in UV space
+    glm::vec2 scale{1.0f};
+    int texCoord = 0;       // 0: Vertex::uv, 1: Vertex::uv1
+    // Rows of the 2x3 matrix (the third column is the offset).
+    glm::vec3 row(int r) const;
+    glm::vec2 apply(glm::vec2 uv0, glm::vec2 uv1) const;
+};
 
 struct Material {
     std::string name;
@@ -32,14 +53,24 @@ struct Material {
     glm::vec3 emissive{0.0f};    // linear, already multiplied by KHR_materials_emissive_strength
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
-    bool doubleSided = false;
+    bool doubleSided = false;    // false: back faces emit nothing
+    int metallicRoughnessTexture = -1;  // linear; G roughness, B metallic, times the factors
+    int normalTexture = -1;             // linear tangent-space normal map
+    float normalScale = 1.0f;           // scales the map's x and y
+    int occlusionTexture = -1;          // linear; R, scales the indirect term only
+    float occlusionStrength = 1.0f;     // occlusion = 1 + strength * (R - 1)
+    int emissiveTexture = -1;           // sRGB; emission = emissive * texture
+    TextureTransform uvTransform[kSlotCount];
+    int texture(int slot) const;        // the index of a slot's texture, -1 for none
 };
 
-// 8-bit RGBA image, sRGB encoded (base colour textures).
+// 8-bit RGBA image: sRGB encoded (base colour, emissive) or linear (metallic-roughness,
+// occlusion, normal), uploaded with the matching internal format.
 struct Texture {
     std::string name;
     int width = 0;
     int height = 0;
+    bool srgb = true;
     std::vector<uint8_t> rgba;
 };
 
@@ -74,7 +105,7 @@ struct Emitter {
     int material = -1;
     std::vector<uint32_t> triangles;  // triangle indices (into Scene::indices / 3)
     std::vector<glm::vec3> corners;   // 3 per triangle, world space, front-wound
-    std::vector<glm::vec3> radiance;  // per triangle: the material's emission (factor x strength)
+    std::vector<glm::vec3> radiance;  // per triangle: the material's emission (factor x strength x the texture's mean)
     glm::vec3 centroid{0.0f};         // area-weighted
     glm::vec3 normal{0.0f, -1.0f, 0.0f};  // unit, area-weighted mean of the fronts: the way light leaves
     float area = 0.0f;
@@ -106,6 +137,13 @@ struct Scene {
 // The scene's lights as a preset lists them: its punctual lights, then one area light (intensity
 // 1, white) per emitter; the four most powerful emitters cast shadows.
 std::vector<LightSettings> sceneLights(const Scene& scene);
+
+// Bilinear, repeating lookup of a texture at uv on the CPU, as the GPU's sampler reads mip 0:
+// rgb decoded to linear when the texture is sRGB, alpha linear.
+glm::vec4 sampleTexture(const Texture& texture, glm::vec2 uv);
+// A material's emitted radiance at a point with texture coordinates uv0 (TEXCOORD_0) and uv1
+// (TEXCOORD_1): emissive factor (times emissive strength) times the emissive texture.
+glm::vec3 emission(const Scene& scene, const Material& material, glm::vec2 uv0, glm::vec2 uv1 = glm::vec2(0.0f));
 
 // Built-in scenes that need no files.
 std::vector<std::string> builtinSceneNames();

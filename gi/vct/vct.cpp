@@ -88,6 +88,7 @@ VCT::VCT()
       mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
     for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg})
         mBlock.requireIn(*p);
+    mMaterialBinding.requireIn(mVoxelizeProg);
     mEmptyFBO = gl::createFramebuffer();
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
@@ -209,17 +210,10 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
     mVoxelizeProg.use();
     glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindSampler(shared::kUnitBaseColor, mRepeat.id());
-    ctx.scene.draw([&](const Material& m, int) {
-        vct::VCTParams draw = p;
-        draw.baseColor = m.baseColor;
-        draw.hasTexture = m.baseColorTexture >= 0 ? 1 : 0;
-        draw.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
-        draw.metallic = m.metallic;
-        mBlock.set(draw);
-        if (m.baseColorTexture >= 0) glBindTextureUnit(shared::kUnitBaseColor, ctx.scene.texture(m.baseColorTexture));
-    });
-    glBindSampler(shared::kUnitBaseColor, 0);
+    mBlock.set(p);
+    mMaterialBinding.begin(mRepeat.id());
+    ctx.scene.draw([&](const Material& m, int) { mMaterialBinding.bind(ctx.scene, m); });
+    mMaterialBinding.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDepthMask(GL_TRUE);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -64,6 +64,7 @@
 #include "gi/gl/handle.h"
 #include "gi/gl/shader.h"
 #include "gi/gl/uniform_block.h"
+#include "gi/render/material_binding.h"
 #include "gi/render/pass.h"
 #include "gi/vct/cone_set.h"
 #include "vct/vct_shared.h"
@@ -135,6 +136,7 @@ private:
     gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
     gl::Program mCompactProg;
     gl::UniformBlock<vct::VCTParams> mBlock;  // every pass reads it
+    MaterialBinding mMaterialBinding;  // the voxelization reads it
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
     std::array<gl::Texture, 3> mSH;

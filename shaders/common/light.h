@@ -48,6 +48,7 @@ float atan2(float y, float x) { return atan(y, x); }
 #endif
 
 GI_CONST int kLightBufferBinding = 7;         // shader storage binding of the GPULight array (passes use 0..3)
+GI_CONST float kAreaPlaneTolerance = 1e-3f;  // triangleIrradiance: points this close to the plane (times the size) get nothing
 GI_CONST int kAreaTriangleBinding = 8;        // shader storage binding of the area lights' triangles
 GI_CONST int kTriangleEmitterBinding = 9;     // int per scene triangle: its emitter, -1 for none (GPUScene)
 GI_CONST int kEmitterScaleBinding = 10;       // vec4 per emitter: rgb factor on its emission this frame, 0 when off
@@ -146,8 +147,13 @@ GI_FUNC float lightFalloff(GPULight l, float dist, float cosAxis) {
 // doubleSided: its front is (b - a) x (c - a).
 GI_FUNC float triangleIrradiance(vec3 a, vec3 b, vec3 c, vec3 P, vec3 N, bool doubleSided) {
     vec3 front = cross(b - a, c - a);
-    float side = dot(P - a, front);
-    if (side == 0.0f || (!doubleSided && side < 0.0f)) return 0.0f;
+    float twiceArea = length(front);
+    if (twiceArea <= 0.0f) return 0.0f;
+    // The distance to the triangle's plane; points on the plane (within a small fraction of the
+    // triangle's size: positions rebuilt from depth are not exact) see it edge-on and get nothing,
+    // where the edge formula would count it whole.
+    float side = dot(P - a, front) / twiceArea;
+    if (abs(side) <= kAreaPlaneTolerance * sqrt(twiceArea) || (!doubleSided && side < 0.0f)) return 0.0f;
     vec3 v[3];
     v[0] = a - P;
     v[1] = b - P;

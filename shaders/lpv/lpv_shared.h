@@ -1,7 +1,7 @@
 // Parameters, buffer bindings, image bindings and texture units of the LPV's passes, shared by
 // C++ (gi/lpv/lpv.cpp) and GLSL (shaders/lpv/). The geometry pass and shade read the G-buffer on
 // the lighting pass's units (kUnitNormal, kUnitDepth, common/shared.h); the RSM pass reads the
-// light buffer (common/light.h) and the base colour on kUnitBaseColor.
+// light buffer (common/light.h) and the material (common/material_shared.h).
 //
 // One uniform block, LPVBlock, for the eight programs: LPVParams is the union of their fields,
 // grouped by the passes that read them, as in envmap/envmap_shared.h (std140 blocks are active
@@ -65,7 +65,7 @@ struct LPVParams {
     mat4 invViewProj;
     // rsm
     mat4 lightViewProj;
-    vec4 baseColor;
+    vec4 baseColor;    // unused, as metallic, hasTexture and alphaCutoff: the material is in MaterialBlock (common/material_shared.h)
     // inject, geometry
     vec4 gridMinCell;  // the cascade's grid: xyz its minimum corner, w its cell size
     // geometry (G-buffer surfels)
@@ -82,8 +82,8 @@ struct LPVParams {
     float texelArea;   // directional: projected world area of a texel
     float texelSolidAngle;  // spot, cube face: solid angle of the map's centre texel
     float metallic;
-    int hasTexture;    // 1: multiply baseColor by the base colour texture
-    float alphaCutoff; // alpha-masked materials; -1 keeps every fragment
+    int hasTexture;    // unused (MaterialBlock)
+    float alphaCutoff; // unused (MaterialBlock)
     // inject
     float nudge;       // cells along the surfel's normal
     // geometry

@@ -8,20 +8,23 @@
 #include "common/material.glsl"
 #include "lpv/lpv_shared.h"
 
-layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
-
 in vec3 vWorld;
 in vec3 vNormal;
 in vec2 vUV;
+in vec4 vTangent;
+in vec2 vUV1;
 
 layout(location = 0) out vec4 oFlux;
 layout(location = 1) out vec4 oNormal;
 layout(location = 2) out vec4 oPosition;
 
 void main() {
-    vec4 base = uLPV.baseColor;
-    if (uLPV.hasTexture != 0) base *= sampleMaterial(uBaseColorTex, vUV);
-    if (uLPV.alphaCutoff >= 0.0 && base.a < uLPV.alphaCutoff) discard;
+    // The material as the G-buffer reads it (common/material.glsl): base colour, cut-outs,
+    // metallic and the normal-mapped normal.
+    vec4 base = materialBaseColor(vUV, vUV1);
+    vec3 n = materialNormal(vNormal, vTangent, gl_FrontFacing, vUV, vUV1);
+    float metallic = materialRoughnessMetallic(vUV, vUV1).y;
+    if (materialCut(base.a)) discard;
     GPULight l = uLights[uLPV.lightIndex];
     vec3 L;  // towards the light
     vec3 flux;
@@ -43,10 +46,9 @@ void main() {
         flux = l.color.rgb * lightProfile(l, d, cosAxis) * solidAngle;
         area = solidAngle * d * d;
     }
-    vec3 n = normalize(vNormal);
     if (dot(n, L) < 0.0) n = -n;  // two-sided, as the raster and the path tracer
     float cosTheta = max(dot(n, L), kLPVMinRSMCosine);
-    oFlux = vec4(base.rgb * (1.0 - uLPV.metallic) * flux, 1.0);
+    oFlux = vec4(base.rgb * (1.0 - metallic) * flux, 1.0);
     oNormal = vec4(n, 1.0);
     oPosition = vec4(vWorld, area / cosTheta);
 }

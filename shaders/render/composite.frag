@@ -1,6 +1,6 @@
 // Base of the HDR image: emission plus the indirect term. The indirect texture holds
 // irradiance / pi, so a Lambert surface reflects albedo * indirect; metals have no diffuse.
-// Ambient occlusion (SSAO, any technique) scales the indirect term. Specular radiance from the
+// Ambient occlusion (SSAO, any technique) and the material's occlusion map scale the indirect term. Specular radiance from the
 // technique (VCT's specular cone) or the environment map is weighed by the split-sum table of
 // the GGX lobe's directional albedo, F0 * A + B (gi/envmap/environment.h).
 #include "render/gbuffer_common.glsl"
@@ -22,7 +22,8 @@ void main() {
         return;
     }
     vec3 emissive = texelFetch(uEmissiveTex, px, 0).rgb;
-    float ao = texelFetch(uAO, px, 0).r;
+    // SSAO times the material's occlusion map (stored as 1 - occlusion, gbuffer.frag).
+    float ao = texelFetch(uAO, px, 0).r * (1.0 - texelFetch(uMaterial, px, 0).b);
     vec3 indirect = texelFetch(uIndirect, px, 0).rgb * ao;
     vec3 specular = texelFetch(uIndirectSpecular, px, 0).rgb * ao;
     vec3 f0 = mix(vec3(0.04), s.baseColor, s.metallic);

@@ -28,7 +28,7 @@ struct RenderParams {
     // composite, light
     mat4 invViewProj;    // clip to world of the camera
     vec4 cameraPos;      // xyz: the camera position, w unused
-    // gbuffer, shadow: the draw's material
+    // unused: the draw's material moved to MaterialBlock (common/material_shared.h); kept until the block is next reshaped
     vec4 baseColor;      // linear RGBA factor; the shadow pass reads alpha only
     vec4 emissive;       // rgb: emitted radiance, w unused
     float alphaCutoff;   // < 0: opaque; else fragments with alpha below it are discarded

@@ -81,7 +81,8 @@ struct VCTParams {
     ivec4 clipMax;
     int resolution;      // voxels per side
     float cellSize;      // world size of a voxel
-    // voxelize: the material drawn (no emission: emissive surfaces reach VCT as area lights)
+    // unused: the material drawn is MaterialBlock's (common/material_shared.h); kept so the layout
+    // holds until the block is next reshaped. (No emission: emissive surfaces reach VCT as area lights.)
     int hasTexture;
     float alphaCutoff;   // < 0: opaque
     vec4 baseColor;

@@ -9,13 +9,14 @@
 #include "common/material.glsl"
 #include "vct/vct_shared.h"
 
-layout(binding = kUnitBaseColor) uniform sampler2D uBaseColorTex;
 layout(binding = kVCTImageAlbedo, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform coherent volatile uimage3D uNormalVox;
 
 in vec3 gGrid;
 in vec3 gNormal;
 in vec2 gUV;
+in vec4 gTangent;
+in vec2 gUV1;
 flat in vec4 gBox;
 flat in vec2 gDepthRange;
 flat in int gAxis;
@@ -39,17 +40,20 @@ vec3 unswizzle(vec3 s, int axis) { return axis == 0 ? s.zxy : axis == 1 ? s.yzx 
 
 void main() {
     if (any(lessThan(gl_FragCoord.xy, gBox.xy)) || any(greaterThan(gl_FragCoord.xy, gBox.zw))) discard;
-    vec4 base = uVCT.baseColor;
-    if (uVCT.hasTexture != 0) base *= sampleMaterial(uBaseColorTex, gUV);
-    if (uVCT.alphaCutoff >= 0.0 && base.a < uVCT.alphaCutoff) discard;
+    // The material as the G-buffer reads it (common/material.glsl); a voxel has no side, so
+    // the normal is the front face's. (Emission reaches VCT as area lights, not voxels.)
+    vec4 base = materialBaseColor(gUV, gUV1);
+    vec3 normal = materialNormal(gNormal, gTangent, true, gUV, gUV1);
+    float metallic = materialRoughnessMetallic(gUV, gUV1).y;
+    if (materialCut(base.a)) discard;
 
     float slope = 0.5 * (abs(dFdx(gGrid.z)) + abs(dFdy(gGrid.z)));
     float z0 = clamp(gGrid.z - slope, gDepthRange.x, gDepthRange.y);
     float z1 = clamp(gGrid.z + slope, gDepthRange.x, gDepthRange.y);
     int first = int(floor(z0)), last = min(int(floor(z1)), int(floor(z0)) + 2);
 
-    vec3 albedo = clamp(base.rgb * (1.0 - uVCT.metallic), 0.0, 1.0);
-    vec3 n = normalize(gNormal) * 0.5 + 0.5;
+    vec3 albedo = clamp(base.rgb * (1.0 - metallic), 0.0, 1.0);
+    vec3 n = normal * 0.5 + 0.5;
     for (int z = first; z <= last; ++z) {
         ivec3 c = ivec3(unswizzle(vec3(floor(gl_FragCoord.xy), float(z)), gAxis));
         if (any(lessThan(c, uVCT.clipMin.xyz)) || any(greaterThanEqual(c, uVCT.clipMax.xyz))) continue;

@@ -14,10 +14,14 @@ layout(triangle_strip, max_vertices = 3) out;
 in vec3 vWorld[];
 in vec3 vNormal[];
 in vec2 vUV[];
+in vec4 vTangent[];
+in vec2 vUV1[];
 
 out vec3 gGrid;     // grid coordinates in voxels, swizzled: xy on the viewport, z the depth
 out vec3 gNormal;
 out vec2 gUV;
+out vec4 gTangent;
+out vec2 gUV1;
 flat out vec4 gBox;     // xy min, zw max of the grown bounding box in pixels
 flat out vec2 gDepthRange;  // the triangle's depth range in voxels
 flat out int gAxis;     // 0: x dominant, 1: y, 2: z
@@ -65,6 +69,8 @@ void main() {
         gGrid = vec3(q, b0 * s[0].z + b1 * s[1].z + b2 * s[2].z);
         gNormal = b0 * vNormal[0] + b1 * vNormal[1] + b2 * vNormal[2];
         gUV = b0 * vUV[0] + b1 * vUV[1] + b2 * vUV[2];
+        gTangent = b0 * vTangent[0] + b1 * vTangent[1] + b2 * vTangent[2];
+        gUV1 = b0 * vUV1[0] + b1 * vUV1[1] + b2 * vUV1[2];
         gBox = vec4(lo, hi);
         gDepthRange = vec2(zlo, zhi);
         gAxis = axis;
