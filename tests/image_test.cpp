@@ -70,6 +70,11 @@ TEST_P(ImageTest, MeetsThePresetsBoundsAgainstTheReference) {
     EXPECT_LE(m.leakFraction, preset.quality.maxLeakFraction);
     std::printf("brightness %.3f of the reference (bound: within %.2f)\n", m.brightness, preset.quality.maxBrightnessError);
     EXPECT_LE(std::abs(m.brightness - 1.0), preset.quality.maxBrightnessError);
+    if (preset.quality.minSSIMLinear > 0.0f) {
+        double linear = compareImages(image, full.image).ssim;
+        std::printf("ssim without tone mapping %.4f (bound %.4f)\n", linear, preset.quality.minSSIMLinear);
+        EXPECT_GE(linear, preset.quality.minSSIMLinear);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, ImageTest, ::testing::ValuesIn(loadCases()), [](const auto& info) {

@@ -32,12 +32,14 @@ struct QualitySettings {
     float minSSIM = 0.0f;           // the SSIM the render must reach against the full reference
     float maxLeakFraction = 1.0f;   // the largest fraction of leak pixels allowed
     float maxBrightnessError = 100.0f;  // the largest |mean luminance / the reference's - 1| allowed
+    float minSSIMLinear = 0.0f;     // SSIM of the images as 8-bit sRGB without tone mapping (gi-compare's); 0: unchecked
 
     template <class V>
     void visit(V&& v) {
         v(minSSIM, {"minSSIM", "SSIM the preset must reach against the path-traced reference (tests check it)", "", -1, 1});
         v(maxLeakFraction, {"maxLeakFraction", "Largest fraction of pixels allowed to leak light", "", 0, 1});
         v(maxBrightnessError, {"maxBrightnessError", "Largest relative error of the mean brightness against the reference", "", 0, 100});
+        v(minSSIMLinear, {"minSSIMLinear", "SSIM the preset must reach on 8-bit sRGB without tone mapping (as gi-compare scores; 0: unchecked)", "", 0, 1});
     }
 };
 
