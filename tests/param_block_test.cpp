@@ -61,13 +61,13 @@ std::vector<Member> envMembers() {
 
 std::vector<Member> lpvMembers() {
     using T = LPVParams;
-    return {GI_MEMBER(T, invViewProj),   GI_MEMBER(T, lightViewProj),  GI_MEMBER(T, baseColor),    GI_MEMBER(T, gridMinCell),
+    return {GI_MEMBER(T, invViewProj),   GI_MEMBER(T, lightViewProj),  GI_MEMBER(T, gridMinCell),
             GI_MEMBER(T, cameraPos),     GI_MEMBER(T, cascadeMinCell), GI_MEMBER(T, resolution),   GI_MEMBER(T, width),
             GI_MEMBER(T, height),        GI_MEMBER(T, lightIndex),     GI_MEMBER(T, texelArea),    GI_MEMBER(T, texelSolidAngle),
-            GI_MEMBER(T, metallic),      GI_MEMBER(T, hasTexture),     GI_MEMBER(T, alphaCutoff),  GI_MEMBER(T, nudge),
+            GI_MEMBER(T, nudge),
             GI_MEMBER(T, fromGBuffer),   GI_MEMBER(T, stride),         GI_MEMBER(T, pixelAngle),   GI_MEMBER(T, blocking),
             GI_MEMBER(T, occlusionStrength), GI_MEMBER(T, cascadeCount), GI_MEMBER(T, intensity),  GI_MEMBER(T, damping),
-            GI_MEMBER(T, cubeFace),      GI_MEMBER(T, pad1)};
+            GI_MEMBER(T, cubeFace)};
 }
 
 std::vector<Member> volumeMembers() {
@@ -83,9 +83,8 @@ std::vector<Member> volumeMembers() {
 
 std::vector<Member> renderMembers() {
     using T = RenderParams;
-    return {GI_MEMBER(T, viewProj),    GI_MEMBER(T, invViewProj), GI_MEMBER(T, cameraPos),   GI_MEMBER(T, baseColor),
-            GI_MEMBER(T, emissive),    GI_MEMBER(T, alphaCutoff), GI_MEMBER(T, roughness),   GI_MEMBER(T, metallic),
-            GI_MEMBER(T, hasTexture),  GI_MEMBER(T, lightPos),    GI_MEMBER(T, shadowFar),   GI_MEMBER(T, lightIndex),
+    return {GI_MEMBER(T, viewProj),    GI_MEMBER(T, invViewProj), GI_MEMBER(T, cameraPos),
+            GI_MEMBER(T, lightPos),    GI_MEMBER(T, shadowFar),   GI_MEMBER(T, lightIndex),
             GI_MEMBER(T, shadowSize),  GI_MEMBER(T, pcfRadius),   GI_MEMBER(T, shadowBias),  GI_MEMBER(T, specular),
             GI_MEMBER(T, exposureScale), GI_MEMBER(T, toneOp),    GI_MEMBER(T, channelMask), GI_MEMBER(T, direction),
             GI_MEMBER(T, pan),         GI_MEMBER(T, zoom),        GI_MEMBER(T, level),       GI_MEMBER(T, mode),
@@ -97,9 +96,9 @@ std::vector<Member> renderMembers() {
 std::vector<Member> vctMembers() {
     using T = vct::VCTParams;
     return {GI_MEMBER(T, gridMin),       GI_MEMBER(T, wrapOffset),   GI_MEMBER(T, clipMin),       GI_MEMBER(T, clipMax),
-            GI_MEMBER(T, resolution),    GI_MEMBER(T, cellSize),     GI_MEMBER(T, hasTexture),    GI_MEMBER(T, alphaCutoff),
-            GI_MEMBER(T, baseColor),     GI_MEMBER(T, metallic),     GI_MEMBER(T, lightFirst),    GI_MEMBER(T, lightCount),
-            GI_MEMBER(T, accumulate),    GI_MEMBER(T, destSize),     GI_MEMBER(T, sourceLevel),
+            GI_MEMBER(T, resolution),    GI_MEMBER(T, cellSize),     GI_MEMBER(T, lightFirst),    GI_MEMBER(T, lightCount),
+            GI_MEMBER(T, accumulate),    GI_MEMBER(T, pad0),         GI_MEMBER(T, pad1),          GI_MEMBER(T, pad2),
+            GI_MEMBER(T, destSize),     GI_MEMBER(T, sourceLevel),
             GI_MEMBER(T, direction),     GI_MEMBER(T, sourceOffsetX), GI_MEMBER(T, destOffsetX),  GI_MEMBER(T, coneCount),
             GI_MEMBER(T, tanHalf),       GI_MEMBER(T, maxDistance),  GI_MEMBER(T, occlusionDistance), GI_MEMBER(T, levelCount),
             GI_MEMBER(T, maxLod),        GI_MEMBER(T, nudge),        GI_MEMBER(T, stepMultiplier), GI_MEMBER(T, cones),

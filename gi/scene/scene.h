@@ -3,6 +3,7 @@
 // so the raster pipeline and the path tracer see exactly the same triangles.
 #pragma once
 
+#include "common/light.h"
 #include "gi/scene/scene_settings.h"
 #include "gi/util/budget.h"
 
@@ -98,7 +99,7 @@ struct Bounds {
 // when the scene has more emissive triangles than kMaxEmitters such parts hold; lights of more
 // than kMaxEmitterTriangles shade as points with a cosine lobe). Each triangle is wound so that
 // its front, (p1 - p0) x (p2 - p0), faces the side it emits from.
-inline constexpr int kMaxEmitterTriangles = 16;
+inline constexpr int kMaxEmitterTriangles = light::kAreaMaxExactTriangles;  // so each part shades exactly
 inline constexpr int kMaxEmitters = 32;
 struct Emitter {
     std::string name;                 // the material's name, with #k when it makes several

@@ -217,9 +217,7 @@ void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, gl
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDepthMask(GL_TRUE);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    glm::ivec3 size = glm::max(clipMax - clipMin, glm::ivec3(0));
     ++mVoxelizationCount;
-    (void)size;
 }
 
 void VCT::updateGrids(const FrameContext& ctx) {

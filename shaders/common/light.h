@@ -48,6 +48,7 @@ float atan2(float y, float x) { return atan(y, x); }
 #endif
 
 GI_CONST int kLightBufferBinding = 7;         // shader storage binding of the GPULight array (passes use 0..3)
+GI_CONST int kAreaMaxExactTriangles = 16;    // area lights (and emitter parts) up to this many triangles are shaded exactly
 GI_CONST float kAreaPlaneTolerance = 1e-3f;  // triangleIrradiance: points this close to the plane (times the size) get nothing
 GI_CONST int kAreaTriangleBinding = 8;        // shader storage binding of the area lights' triangles
 GI_CONST int kTriangleEmitterBinding = 9;     // int per scene triangle: its emitter, -1 for none (GPUScene)
@@ -186,6 +187,20 @@ GI_FUNC float triangleIrradiance(vec3 a, vec3 b, vec3 c, vec3 P, vec3 N, bool do
     }
     return 0.5f * abs(sum);
 }
+
+#ifndef __cplusplus
+// The exact irradiance at P (unit normal N) of area light l: its triangles' radiance times
+// triangleIrradiance, summed. For lights of at most kAreaMaxExactTriangles triangles; larger ones
+// are shaded as their point with a cosine lobe (lightFalloff).
+vec3 areaIrradiance(GPULight l, vec3 P, vec3 N) {
+    vec3 E = vec3(0.0);
+    for (int i = 0; i < l.info.w; ++i) {
+        GPUAreaTriangle tri = uAreaTriangles[l.info.z + i];
+        E += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, P, N, l.spot.z != 0.0);
+    }
+    return E;
+}
+#endif
 
 
 // Full field of view of a spot's shadow map (and RSM): the outer cone and a margin.

@@ -65,7 +65,7 @@ struct LPVParams {
     mat4 invViewProj;
     // rsm
     mat4 lightViewProj;
-    vec4 baseColor;    // unused, as metallic, hasTexture and alphaCutoff: the material is in MaterialBlock (common/material_shared.h)
+    // (the draw's material is MaterialBlock's, common/material_shared.h)
     // inject, geometry
     vec4 gridMinCell;  // the cascade's grid: xyz its minimum corner, w its cell size
     // geometry (G-buffer surfels)
@@ -81,9 +81,6 @@ struct LPVParams {
     int lightIndex;    // the light's entry in the light buffer
     float texelArea;   // directional: projected world area of a texel
     float texelSolidAngle;  // spot, cube face: solid angle of the map's centre texel
-    float metallic;
-    int hasTexture;    // unused (MaterialBlock)
-    float alphaCutoff; // unused (MaterialBlock)
     // inject
     float nudge;       // cells along the surfel's normal
     // geometry
@@ -100,15 +97,14 @@ struct LPVParams {
     float damping;     // self-illumination damping, 0 .. 1
     // rsm
     int cubeFace;      // 1: a face of a point light's cube RSM (texel solid angles off the face's axis)
-    float pad1;
 };
 
 #ifdef __cplusplus
 inline constexpr const char* kLPVBlockName = "LPVBlock";
-static_assert(offsetof(LPVParams, baseColor) == 128 && offsetof(LPVParams, cascadeMinCell) == 176);
-static_assert(offsetof(LPVParams, resolution) == 176 + 16 * kLPVMaxCascades);
-static_assert(offsetof(LPVParams, nudge) == 212 + 16 * kLPVMaxCascades && offsetof(LPVParams, pad1) == 252 + 16 * kLPVMaxCascades);
-static_assert(sizeof(LPVParams) == 256 + 16 * kLPVMaxCascades);
+static_assert(offsetof(LPVParams, gridMinCell) == 128 && offsetof(LPVParams, cascadeMinCell) == 160);
+static_assert(offsetof(LPVParams, resolution) == 160 + 16 * kLPVMaxCascades);
+static_assert(offsetof(LPVParams, nudge) == 184 + 16 * kLPVMaxCascades && offsetof(LPVParams, cubeFace) == 220 + 16 * kLPVMaxCascades);
+static_assert(sizeof(LPVParams) == 224 + 16 * kLPVMaxCascades);
 }  // namespace gi::shared
 #else
 layout(std140, binding = kLPVBlockBinding) uniform LPVBlock {

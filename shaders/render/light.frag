@@ -103,28 +103,18 @@ float shadowArea(GPULight l, vec3 P, vec3 N, vec3 L, float dist) {
     return sum / float(kSoftTaps);
 }
 
-// An area light: the exact diffuse irradiance of its triangles (triangleIrradiance), or, for a
-// light of more than kMaxExactTriangles, its point-with-a-cosine-lobe approximation from the
+// An area light: the exact diffuse irradiance of its triangles (areaIrradiance), or, for a
+// light of more than kAreaMaxExactTriangles, its point-with-a-cosine-lobe approximation from the
 // centroid; GGX specular evaluated towards the point of the light nearest the mirror direction
 // (Karis 2013's representative point) times the same irradiance, its lobe widened by the
 // light's size so the energy does not grow as the highlight spreads.
-const int kMaxExactTriangles = 16;
-
 vec3 areaLight(GPULight l, Surface s, out vec3 L, out float dist) {
     vec3 toLight = l.position.xyz - s.P;
     dist = max(length(toLight), 1e-6);
     L = toLight / dist;
-    vec3 E = vec3(0.0);
-    int count = l.info.w;
-    bool twoSided = l.spot.z != 0.0;
-    if (count <= kMaxExactTriangles) {
-        for (int i = 0; i < count; ++i) {
-            GPUAreaTriangle tri = uAreaTriangles[l.info.z + i];
-            E += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, s.P, s.N, twoSided);
-        }
-    } else {
-        E = l.color.rgb * lightFalloff(l, dist, dot(-L, l.direction.xyz)) * max(dot(s.N, L), 0.0);
-    }
+    vec3 E = l.info.w <= kAreaMaxExactTriangles
+                 ? areaIrradiance(l, s.P, s.N)
+                 : l.color.rgb * lightFalloff(l, dist, dot(-L, l.direction.xyz)) * max(dot(s.N, L), 0.0);
     if (all(equal(E, vec3(0.0)))) return vec3(0.0);
     vec3 result = s.baseColor * (1.0 - s.metallic) / kPi * E;
     if (uRender.specular != 0) {

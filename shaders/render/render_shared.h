@@ -28,13 +28,7 @@ struct RenderParams {
     // composite, light
     mat4 invViewProj;    // clip to world of the camera
     vec4 cameraPos;      // xyz: the camera position, w unused
-    // unused: the draw's material moved to MaterialBlock (common/material_shared.h); kept until the block is next reshaped
-    vec4 baseColor;      // linear RGBA factor; the shadow pass reads alpha only
-    vec4 emissive;       // rgb: emitted radiance, w unused
-    float alphaCutoff;   // < 0: opaque; else fragments with alpha below it are discarded
-    float roughness;     // perceptual, 0..1
-    float metallic;      // 0..1
-    int hasTexture;      // 1: the base colour is multiplied by the texture on kUnitBaseColor
+    // (the draw's material is MaterialBlock's, common/material_shared.h)
     // shadow with LINEAR_DEPTH (point lights)
     vec4 lightPos;       // xyz: the light's position, w unused
     float shadowFar;     // the cube map stores distance / shadowFar
@@ -71,10 +65,10 @@ struct RenderParams {
 
 #ifdef __cplusplus
 inline constexpr const char* kRenderBlockName = "RenderBlock";
-static_assert(offsetof(RenderParams, cameraPos) == 128 && offsetof(RenderParams, alphaCutoff) == 176);
-static_assert(offsetof(RenderParams, lightPos) == 192 && offsetof(RenderParams, toneOp) == 236);
-static_assert(offsetof(RenderParams, channelMask) == 240 && offsetof(RenderParams, pan) == 272);
-static_assert(offsetof(RenderParams, depthNear) == 304 && sizeof(RenderParams) == 336);
+static_assert(offsetof(RenderParams, cameraPos) == 128 && offsetof(RenderParams, lightPos) == 144);
+static_assert(offsetof(RenderParams, toneOp) == 188 && offsetof(RenderParams, channelMask) == 192);
+static_assert(offsetof(RenderParams, pan) == 224 && offsetof(RenderParams, depthNear) == 256);
+static_assert(sizeof(RenderParams) == 288);
 }  // namespace gi::shared
 #else
 layout(std140, binding = kRenderBlockBinding) uniform RenderBlock {

@@ -57,14 +57,9 @@ void main() {
                 E *= lightFalloff(l, dist, dot(-L, l.direction.xyz));
             }
             float c = dot(n, L);
-            if (l.info.x == kLightArea && len > 1e-3 && l.info.w <= kVCTMaxExactTriangles) {
+            if (l.info.x == kLightArea && len > 1e-3 && l.info.w <= kAreaMaxExactTriangles) {
                 // An area light near the voxel: the exact irradiance of its triangles on each side.
-                vec3 ef = vec3(0.0), eb = vec3(0.0);
-                for (int k = 0; k < l.info.w; ++k) {
-                    GPUAreaTriangle tri = uAreaTriangles[l.info.z + k];
-                    ef += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, p, n, l.spot.z != 0.0);
-                    eb += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, p, -n, l.spot.z != 0.0);
-                }
+                vec3 ef = areaIrradiance(l, p, n), eb = areaIrradiance(l, p, -n);
                 float vis = all(equal(ef + eb, vec3(0.0))) ? 0.0 : visibility(i, l, p + L * uVCT.cellSize + (c >= 0.0 ? n : -n) * (0.5 * uVCT.cellSize));
                 front += ef * vis;
                 back += eb * vis;

@@ -31,7 +31,6 @@ GI_CONST int kVCTUnitMipSource = 0;    // mip: the volume read
 GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
 GI_CONST int kVCTUnitLowSpecular = 3;
 GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
-GI_CONST int kVCTMaxExactTriangles = 16;  // inject: area lights of more triangles are lit as points with a cosine lobe
 GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo or normal)
 GI_CONST int kVCTUnitViewRadiance = 2;   // premultiplied radiance + opacity, with mips
 
@@ -81,16 +80,15 @@ struct VCTParams {
     ivec4 clipMax;
     int resolution;      // voxels per side
     float cellSize;      // world size of a voxel
-    // unused: the material drawn is MaterialBlock's (common/material_shared.h); kept so the layout
-    // holds until the block is next reshaped. (No emission: emissive surfaces reach VCT as area lights.)
-    int hasTexture;
-    float alphaCutoff;   // < 0: opaque
-    vec4 baseColor;
-    float metallic;
+    // (voxelize: the material drawn is MaterialBlock's, common/material_shared.h; no emission:
+    // emissive surfaces reach VCT as area lights)
     // inject: the batch, uLights[lightFirst + i] with its shadow maps on unit + i
     int lightFirst;
     int lightCount;
     int accumulate;      // adds to the exit radiance of the earlier batches
+    float pad0;
+    float pad1;
+    float pad2;
     // mip
     ivec4 destSize;      // xyz: the level written, in voxels; w unused
     int sourceLevel;
@@ -134,13 +132,12 @@ struct VCTParams {
 
 #ifdef __cplusplus
 inline constexpr const char* kVCTBlockName = "VCTBlock";
-static_assert(offsetof(VCTParams, resolution) == 64 && offsetof(VCTParams, baseColor) == 80);
-static_assert(offsetof(VCTParams, lightFirst) == 100 && offsetof(VCTParams, destSize) == 112);
-static_assert(offsetof(VCTParams, coneCount) == 144 && offsetof(VCTParams, cones) == 176);
-static_assert(offsetof(VCTParams, levelMinCell) == 176 + 16 * kVCTMaxCones);
-static_assert(offsetof(VCTParams, invViewProj) == 176 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels));
-static_assert(offsetof(VCTParams, sh) == 176 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 44);
-static_assert(sizeof(VCTParams) == 176 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 64);
+static_assert(offsetof(VCTParams, resolution) == 64 && offsetof(VCTParams, lightFirst) == 72);
+static_assert(offsetof(VCTParams, destSize) == 96 && offsetof(VCTParams, coneCount) == 128);
+static_assert(offsetof(VCTParams, cones) == 160 && offsetof(VCTParams, levelMinCell) == 160 + 16 * kVCTMaxCones);
+static_assert(offsetof(VCTParams, invViewProj) == 160 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels));
+static_assert(offsetof(VCTParams, sh) == 160 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 44);
+static_assert(sizeof(VCTParams) == 160 + 16 * (kVCTMaxCones + 2 * kVCTMaxLevels) + 64 + 4 * 16 + 64);
 }  // namespace gi::vct
 #else
 layout(std140, binding = kVCTBlockBinding) uniform VCTBlock {
