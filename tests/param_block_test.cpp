@@ -106,7 +106,8 @@ std::vector<Member> vctMembers() {
             GI_MEMBER(T, imageSize),     GI_MEMBER(T, toFull),       GI_MEMBER(T, specularAperture), GI_MEMBER(T, vao),
             GI_MEMBER(T, vaoStrength),   GI_MEMBER(T, intensity),    GI_MEMBER(T, specularCone),  GI_MEMBER(T, nearPlane),
             GI_MEMBER(T, farPlane),      GI_MEMBER(T, exposureScale), GI_MEMBER(T, opacityThreshold), GI_MEMBER(T, viewSource),
-            GI_MEMBER(T, viewMip),       GI_MEMBER(T, edges),        GI_MEMBER(T, sh),          GI_MEMBER(T, background)};
+            GI_MEMBER(T, viewMip),       GI_MEMBER(T, edges),        GI_MEMBER(T, sh),          GI_MEMBER(T, background),
+            GI_MEMBER(T, sky),           GI_MEMBER(T, skyMipRoughness)};
 }
 
 // Where the driver's layout of `block` in `program` differs from the C++ struct's, one line per

@@ -356,15 +356,76 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
                     100.0 * lit.back() / expected, expected);
     }
     EXPECT_LT(lit[0], 0.1 * expected) << "without a nudge the floor's own voxels block its cones";
-    for (size_t i = 1; i < lit.size(); ++i) EXPECT_GT(lit[i], lit[i - 1]) << "a larger nudge frees more of the cones";
-    // As seed 000 reports, a nudge of 2 still self-occludes at the coarse mips; 4 reaches the
-    // panel. The cones then gather about half of the analytic value (51 % measured): the panel is
-    // one voxel thin and 16 voxels away, where the cones sample coarse mips. Before emitters became
-    // area lights this test lit the panel through the emission volume, which put its emission on
-    // both sides, twice its radiance in these isotropic voxels, and so matched the analytic value
-    // within 20 %; the shortfall is VCT's, not the test's (not yet analysed further).
-    EXPECT_GT(lit[4] / expected, 0.4);
-    EXPECT_LT(lit[4] / expected, 1.2);
+    // Up to the default nudge (3) each step frees more of the cones; beyond it the floor no
+    // longer blocks them (nudge 4 gathers within 2 % of nudge 3).
+    const int defaultNudge = int(VCTSettings{}.nudge);
+    ASSERT_EQ(defaultNudge, 3);
+    for (int i = 1; i <= defaultNudge; ++i) EXPECT_GT(lit[i], lit[i - 1]) << "a larger nudge frees more of the cones";
+    EXPECT_NEAR(lit[4] / lit[3], 1.0, 0.05) << "past the default nudge the floor should no longer self-occlude";
+    // The cone set's own estimate of this panel is the analytic value (its nine cones cover 1.0,
+    // 0.86 and 0.72 of the panel, which weighted by their cosines gives 0.831 of the radiance,
+    // as the view factor does), so what is missing is the trace's. With the cones sampling
+    // kVCTFootprintLod finer than their width it gathers 80 % at nudge 3 (39 % when the texel
+    // was as wide as the cone, before issue 13); one voxel thin and 16 voxels away, the panel
+    // still falls between the coarse samples a little.
+    EXPECT_GT(lit[3] / expected, 0.75);
+    EXPECT_LT(lit[3] / expected, 1.25);
+}
+
+// The sky through the cones (issue 13 item 2): an open floor under a constant environment of
+// radiance 1 has E / pi = 1, which technique none's irradiance map gives exactly (times the
+// floor's albedo 0.8); the same floor inside a closed box must gather no sky. The scene has no
+// light, so everything the floor gathers is sky. VCT gathers 55 % of the open sky (measured):
+// its oblique cones (45 and 55 degrees from the normal) keep sampling the floor's own voxels,
+// since a mip texel's trilinear sample reaches 1.5 of its texels from the sample (half a texel
+// for where the floor sits in its texel, one of filter), more than their height above the floor
+// at every step; the vertical cone keeps 76 % of its transparency. Capping the footprint by the
+// height above the receiver removed that (100 % of the sky) but let 20 % through the closed box's
+// one-voxel walls, which the self-occlusion had hidden, so it is not done (closing note).
+TEST_F(VCTGL, ConesThatEndUnoccludedSeeTheSky) {
+    auto frame = [](const Scene& scene, const std::string& technique) {
+        Preset p;
+        p.header.technique.name = technique;
+        p.vct.gridResolution = 64;
+        p.vct.specularCone = false;
+        p.environment.enabled = true;
+        p.environment.file = "builtin:constant";
+        p.environment.cubeSize = 32;
+        p.environment.samples = 16;
+        FrameSettings fs = frameSettings(p, scene, 32, 32);
+        fs.lights.clear();
+        fs.camera.eye = {0.0f, 0.6f, 0.0f};
+        fs.camera.target = {0.0f, 0.0f, 0.0f};
+        fs.camera.up = {0.0f, 0.0f, -1.0f};
+        fs.camera.fovY = 20.0f;
+        return fs;
+    };
+    Scene open;
+    {
+        MeshBuilder b(open);
+        int floor = b.material("floor", glm::vec3(0.8f), 1.0f);
+        b.quad(floor, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});
+        open.finalize();
+    }
+    Scene closed;
+    {
+        MeshBuilder b(closed);
+        int white = b.material("white", glm::vec3(0.8f), 1.0f);
+        b.box(white, {0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f);
+        closed.finalize();
+    }
+    Renderer r;
+    r.setScene(open);
+    double none = test::meanIndirect(r, frame(open, "none"));
+    double vct = test::meanIndirect(r, frame(open, "vct"));
+    r.setScene(closed);
+    double inside = test::meanIndirect(r, frame(closed, "vct"));
+    std::printf("open floor under a constant sky: none %.4f, vct %.4f (%.0f %%); inside a closed box: vct %.5f\n", none, vct,
+                100.0 * vct / none, inside);
+    EXPECT_NEAR(none, 0.8, 0.02) << "the irradiance map of a constant sky of radiance 1";
+    EXPECT_GT(vct / none, 0.45) << "the cones should see the open sky";
+    EXPECT_LT(vct / none, 1.05) << "more than the sky's irradiance";
+    EXPECT_LT(inside, 0.05 * none) << "no sky inside a closed box";
 }
 
 // The two-room scene: SH voxels radiate from the lit side only, so less light reaches the closed

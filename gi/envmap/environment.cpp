@@ -260,6 +260,14 @@ void Environment::prepare(FrameContext& ctx) {
     const FrameSettings& fs = ctx.settings;
     prepare(fs.environment, ctx.timer, fs.render, ctx.progress, ctx.changes);
     ctx.brdfLUT = brdfLUT();
+    if (fs.environment.enabled && fs.environment.intensity > 0.0f && ready()) {
+        ctx.sky.prefiltered = mPrefiltered.id();
+        ctx.sky.sampler = mCubeLinear.id();
+        ctx.sky.intensity = fs.environment.intensity;
+        ctx.sky.rotation = fs.environment.rotation;
+        ctx.sky.mipRoughness.clear();
+        for (const MipInfo& m : mMips) ctx.sky.mipRoughness.push_back(m.roughness);
+    }
 }
 
 void Environment::indirect(FrameContext& ctx) {
@@ -427,13 +435,15 @@ bool Environment::reloadShaders(std::string& log) {
     return ok;
 }
 
-// The environment lights the scene through technique none's indirect term only: LPV and VCT do
-// not gather it yet, so with them it is the sky and nothing more (the reference still lights
-// with it).
+// The environment lights the scene through technique none's indirect term, and through the
+// techniques that gather FrameContext::sky (their settings' kGathersSky); with any other it is
+// the sky and nothing more (the reference still lights with it).
 std::string EnvironmentSettings::notes(const FrameSettings& fs) {
     if (!fs.environment.enabled || fs.environment.intensity <= 0.0f || fs.technique == TechniqueChoice::kNone) return "";
-    return "the environment map lights the scene with technique none only: technique " + fs.technique +
-           " adds no sky light (it is drawn as the sky)";
+    const PassInfo* technique = findPass(fs.technique);
+    if (technique && technique->gathersSky) return "";
+    return "the environment map does not light the scene with technique " + fs.technique +
+           ", which gathers no sky light (it is drawn as the sky)";
 }
 
 }  // namespace gi

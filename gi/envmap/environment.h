@@ -31,8 +31,9 @@
 //     cube evaluated from 9 SH coefficients projected on the CPU (a GGX lobe of roughness 1 is
 //     not a cosine lobe). Sampling it by cosine on the GPU instead spread the studio map's small
 //     lights across the terminator (dim sides 2-4x too bright against the path tracer).
-//   - The environment lights the scene only with technique none (the GI techniques do not
-//     gather it); with a technique it is still drawn as the sky.
+//   - The environment lights the scene with technique none, and with the techniques that read
+//     FrameContext::sky (VCT's cones, through their leftover transparency); the others do not
+//     gather it, and with any technique it is still drawn as the sky.
 // Known limits: no shadowing or occlusion of environment light (besides SSAO on the diffuse
 // term); no local probes or parallax correction (as the seed).
 #pragma once

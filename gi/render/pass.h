@@ -69,6 +69,15 @@ struct ShadowMapView {
     float far = 1.0f;           // cube maps
 };
 
+// The environment's distant light, for the techniques that gather it (prefiltered 0: none).
+struct SkyLight {
+    GLuint prefiltered = 0;           // cube with the GGX roughness chain (gi/envmap/environment.h)
+    GLuint sampler = 0;               // trilinear, seamless, for it
+    float intensity = 0.0f;           // radiance scale
+    float rotation = 0.0f;            // degrees about +y
+    std::vector<float> mipRoughness;  // perceptual roughness of each mip of the chain
+};
+
 struct FrameContext {
     const FrameSettings& settings;
     const GPUScene& scene;
@@ -91,6 +100,7 @@ struct FrameContext {
     bool indirectWritten = false;
     GLuint ambientOcclusion = 0;  // R8 texture multiplying the indirect term (white when none)
     GLuint brdfLUT = 0;           // split-sum table of the lighting pass's specular (0: none)
+    SkyLight sky;                 // the environment (prepare stage), when it lights the scene
 };
 
 // The surface under a pixel of the last frame, reconstructed from the G-buffer as the passes
@@ -174,6 +184,7 @@ struct PassInfo {
     void (*checkTime)(const FrameSettings&);        // null when the pass has no long work
     std::string (*notes)(const FrameSettings&);     // null when it never has any
     uint8_t (*changes)(const FrameSettings& before, const FrameSettings& after);  // diff of its section
+    bool gathersSky = false;  // a technique that lights the scene with FrameContext::sky (S::kGathersSky)
 };
 
 // Every pass, in the order of the section list.

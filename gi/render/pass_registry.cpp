@@ -16,6 +16,7 @@ PassInfo entry() {
     PassInfo info{S::kSection, S::kRole, &S::createPass, &S::estimateBytes, nullptr, nullptr, &sectionChanges<Member>};
     if constexpr (requires(const FrameSettings& fs) { S::checkTime(fs); }) info.checkTime = &S::checkTime;
     if constexpr (requires(const FrameSettings& fs) { S::notes(fs); }) info.notes = &S::notes;
+    if constexpr (requires { S::kGathersSky; }) info.gathersSky = S::kGathersSky;
     return info;
 }
 

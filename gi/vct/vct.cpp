@@ -7,6 +7,7 @@
 #include "gi/util/error.h"
 #include "vct/vct_shared.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gi {
@@ -442,6 +443,18 @@ void VCT::trace(const FrameContext& ctx) {
     p.specularAperture = glm::vec4(glm::radians(glm::vec2(s.specularApertureMin, s.specularApertureMax)), 0.0f, 0.0f);
     p.invViewProj = ctx.invViewProj;
     p.cameraPos = glm::vec4(ctx.settings.camera.eye, 0.0f);
+    // The sky through the cones' leftover transparency (trace.comp), when the environment offers it.
+    const SkyLight& sky = ctx.sky;
+    if (sky.prefiltered != 0 && !sky.mipRoughness.empty()) {
+        int mips = std::min(int(sky.mipRoughness.size()), shared::kSkyMaxMips);
+        float apertureRange = std::max(s.specularApertureMax - s.specularApertureMin, 1e-3f);
+        float diffuseRoughness = std::clamp((s.coneAperture - s.specularApertureMin) / apertureRange, 0.0f, 1.0f);
+        p.sky = glm::vec4(sky.intensity, sky.rotation, float(mips), diffuseRoughness);
+        for (int m = 0; m < shared::kSkyMaxMips; ++m)
+            p.skyMipRoughness[m / 4][m % 4] = m < mips ? sky.mipRoughness[size_t(m)] : 1.0f;
+        glBindTextureUnit(vct::kVCTUnitSky, sky.prefiltered);
+        glBindSampler(vct::kVCTUnitSky, sky.sampler);
+    }
     glm::ivec2 full(ctx.width, ctx.height);
     glm::ivec2 low = glm::max(glm::ivec2(glm::ceil(glm::vec2(full) * s.traceScale)), glm::ivec2(1));
     bool scaled = low != full;
@@ -464,6 +477,7 @@ void VCT::trace(const FrameContext& ctx) {
     glDispatchCompute(gl::groupCount(low.x, shared::kGroup2D), gl::groupCount(low.y, shared::kGroup2D), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
+    glBindSampler(vct::kVCTUnitSky, 0);
     if (!scaled) return;
     auto up = ctx.timer.scope("vct.upsample");
     vct::VCTParams u{};

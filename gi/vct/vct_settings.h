@@ -33,6 +33,8 @@ struct VCTSettings {
     static constexpr std::string_view kSection = "vct";
     // The pass these settings drive, registered by the section list (gi/preset/settings.h).
     static constexpr PassRole kRole = PassRole::Technique;
+    // Cones that leave the grid, or end unoccluded, read the environment (FrameContext::sky).
+    static constexpr bool kGathersSky = true;
     static std::unique_ptr<Pass> createPass();
     static size_t estimateBytes(const FrameSettings& fs);
     int gridResolution = 64;          // voxels per side of the grid (of every level in cascaded and clipmap modes)

@@ -24,6 +24,9 @@ inline float clamp(float x, float lo, float hi) { return std::min(std::max(x, lo
 GI_CONST float kPi = 3.14159265358979f;
 GI_CONST float kSqrt3 = 1.7320508f;  // the diagonal of a unit cube
 
+// Mips of the environment's prefiltered chain at most (EnvParams::mipRoughness, VCTParams::skyMipRoughness).
+GI_CONST int kSkyMaxMips = 32;
+
 // Workgroup sizes of the compute passes, declared by the shaders and divided by by the host:
 // image passes run 8x8 tiles, volume passes 4x4x4 bricks, list passes 64 entries.
 GI_CONST int kGroup2D = 8;

@@ -1,14 +1,11 @@
 // Environment map helpers shared by the environment passes: the latlong convention of
 // gi/envmap/envmap_image.h (latLongUV), GL cube face directions, the Hammersley sequence and
-// GGX importance sampling (Karis 2013), and the mip of a prefiltered chain for a roughness.
+// GGX importance sampling (Karis 2013); the rotation and the mip for a roughness are in
+// common/sky.glsl, shared with the techniques that read the sky.
 // Through envmap/envmap_shared.h every pass has the constants and the parameter block uEnv.
 #include "common/shared.h"
 #include "envmap/envmap_shared.h"
-
-vec3 envRotateY(vec3 d, float deg) {
-    float a = radians(deg), c = cos(a), s = sin(a);
-    return vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
-}
+#include "common/sky.glsl"
 
 vec2 latLongUV(vec3 dir, float rotationDeg) {
     vec3 d = envRotateY(dir, -rotationDeg);
@@ -53,16 +50,4 @@ vec3 sampleGGX(vec2 xi, float a) {
     float cosTheta = sqrt((1.0 - xi.y) / (1.0 + (a * a - 1.0) * xi.y));
     float sinTheta = sqrt(1.0 - cosTheta * cosTheta);
     return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
-}
-
-// The mip (fractional) of a chain whose mip m holds roughness table[m / 4][m % 4] (packed as
-// EnvParams::mipRoughness), for perceptual roughness r: piecewise linear in the table, as the
-// seed's shading (Alg. 8) does.
-float mipForRoughness(float r, vec4 table[kEnvMaxMips / 4], int count) {
-    if (r <= table[0][0]) return 0.0;
-    for (int m = 0; m + 1 < count; ++m) {
-        float lo = table[m / 4][m % 4], hi = table[(m + 1) / 4][(m + 1) % 4];
-        if (r <= hi) return float(m) + (r - lo) / max(hi - lo, 1e-6);
-    }
-    return float(count - 1);
 }

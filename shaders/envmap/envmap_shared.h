@@ -18,7 +18,7 @@ namespace gi::shared {
 #endif
 
 // Mips of the prefiltered chain at most: the length of EnvParams::mipRoughness.
-GI_CONST int kEnvMaxMips = 32;
+GI_CONST int kEnvMaxMips = kSkyMaxMips;
 
 // EnvParams::mode of the prefilter.
 GI_CONST int kEnvPrefilterGGX = 0;

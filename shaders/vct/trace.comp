@@ -4,7 +4,12 @@
 // specularApertureMin to specularApertureMax by roughness (seed 000: 1 to 80 degrees), gives the
 // radiance the composite pass weighs with the split-sum approximation. VAO: the diffuse cones'
 // opacity within vaoDistance, weighted like their radiance, scales the indirect light.
+// Sky: a cone that leaves the grid, or reaches its length, with transparency 1 - a left sees the
+// environment through it: it adds (1 - a) times the prefiltered map along its axis, at the
+// roughness whose GGX lobe is as wide as the cone (the diffuse cones: uVCT.sky.w, the inverse of
+// the specular aperture's roughness ramp; the specular cone: the pixel's roughness).
 #include "vct/trace.glsl"
+#include "common/sky.glsl"
 
 #include "common/shared.h"
 layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
@@ -13,6 +18,14 @@ layout(binding = kUnitMaterial) uniform sampler2D uMaterial;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kVCTImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
 layout(binding = kVCTImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
+layout(binding = kVCTUnitSky) uniform samplerCube uSky;
+
+// The environment's radiance seen through a cone's leftover transparency.
+vec3 skyRadiance(vec3 dir, float roughness) {
+    if (uVCT.sky.x <= 0.0) return vec3(0.0);
+    float lod = mipForRoughness(roughness, uVCT.skyMipRoughness, int(uVCT.sky.z));
+    return uVCT.sky.x * textureLod(uSky, envRotateY(dir, -uVCT.sky.y), lod).rgb;
+}
 
 void main() {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -30,8 +43,9 @@ void main() {
         float visibility = 0.0;
         for (int i = 0; i < uVCT.coneCount; ++i) {
             float occlusion;
-            vec4 c = traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, uVCT.occlusionDistance, occlusion);
-            indirect += uVCT.cones[i].w * c.rgb;
+            vec3 dir = frame * uVCT.cones[i].xyz;
+            vec4 c = traceCone(p, n, dir, uVCT.tanHalf, uVCT.maxDistance, uVCT.occlusionDistance, occlusion);
+            indirect += uVCT.cones[i].w * (c.rgb + (1.0 - c.a) * skyRadiance(dir, uVCT.sky.w));
             visibility += uVCT.cones[i].w * (1.0 - occlusion);
         }
         if (uVCT.vao != 0) indirect *= mix(1.0, visibility, uVCT.vaoStrength);
@@ -42,7 +56,8 @@ void main() {
             float roughness = texelFetch(uMaterial, px, 0).r;
             float aperture = mix(uVCT.specularAperture.x, uVCT.specularAperture.y, roughness);
             float occlusion;
-            specular = uVCT.intensity * traceCone(p, n, r, tan(0.5 * aperture), uVCT.maxDistance, 0.0, occlusion).rgb;
+            vec4 c = traceCone(p, n, r, tan(0.5 * aperture), uVCT.maxDistance, 0.0, occlusion);
+            specular = uVCT.intensity * (c.rgb + (1.0 - c.a) * skyRadiance(r, roughness));
         }
     }
     imageStore(uIndirect, q, vec4(indirect, 1.0));
