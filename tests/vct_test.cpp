@@ -452,7 +452,10 @@ TEST_F(VCTGL, TwoRoomLeak) {
     fs.camera.eye = {-0.1f, 1.0f, 0.0f};
     fs.camera.target = {-2.0f, 0.8f, 0.0f};
     double litRoom = test::meanIndirect(r, fs);
-    std::printf("indirect in the dark room: isotropic %.5f, SH %.5f; lit room (SH) %.5f\n", leakIsotropic, leakSH, litRoom);
+    fs.vct.sh = false;
+    double litRoomDefault = test::meanIndirect(r, fs);
+    std::printf("indirect in the dark room: isotropic %.5f, SH %.5f; lit room: SH %.5f, default %.5f (leak with the defaults %.0f %%)\n",
+                leakIsotropic, leakSH, litRoom, litRoomDefault, 100.0 * leakIsotropic / litRoomDefault);
     EXPECT_GT(litRoom, 0.0);
     EXPECT_LT(leakSH, 0.5 * leakIsotropic) << "SH voxels should cut the leak at least in half";
 }
