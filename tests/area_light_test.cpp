@@ -172,6 +172,29 @@ TEST(AreaLight, EmittersLightTheFrameAndNoSunIsInvented) {
     }
 }
 
+TEST(AreaLight, PlacedFieldsAreReadOnlyInTheSettingsTable) {
+    // The editor draws a field disabled where the settings say it is derived: an area light's
+    // position and direction (placeAreaLight overwrites them every frame), nothing of a spot's.
+    // Walking visit() checks the names match the table's keys.
+    auto readOnlyKeys = [](const LightSettings& l) {
+        std::vector<std::string> keys;
+        LightSettings copy = l;
+        copy.visit([&](auto&, const FieldMeta& m) {
+            if (l.readOnly(m.key)) keys.push_back(m.key);
+        });
+        return keys;
+    };
+    static_assert(HasReadOnlyFields<LightSettings>);
+    LightSettings area;
+    area.type = LightType::Area;
+    area.emitter = 0;
+    EXPECT_EQ(readOnlyKeys(area), (std::vector<std::string>{"position", "direction"}));
+    LightSettings spot;
+    spot.type = LightType::Spot;
+    EXPECT_TRUE(readOnlyKeys(spot).empty());
+    EXPECT_NE(std::string(area.readOnly("position")).find("emissive surface"), std::string::npos);
+}
+
 class AreaLightGL : public test::GLTest {};
 
 constexpr int kSize = 128;
