@@ -36,6 +36,8 @@ int run(int argc, char** argv) {
                  "Open the Phase function window (the volumetric phase function as a polar plot) from the start");
     app.add_flag("--mips-panel", options.roughnessMips,
                  "Open the environment settings' Roughness mips panel (the prefiltered chain and a preview of one mip) from the start");
+    app.add_flag("--lights-panel", options.lightsPanel,
+                 "Open the lights section with every light expanded (an area light's placed fields read-only) from the start");
     app.add_option("--previewer", options.previewers,
                    "Show this previewer from the start (a name gi-render --views writes, e.g. environment.mips); repeatable");
     app.add_option("--reference", options.reference, "Start the Reference panel in this view")

@@ -172,6 +172,29 @@ TEST(AreaLight, EmittersLightTheFrameAndNoSunIsInvented) {
     }
 }
 
+TEST(AreaLight, PlacedFieldsAreReadOnlyInTheSettingsTable) {
+    // The editor draws a field disabled where the settings say it is derived: an area light's
+    // position and direction (placeAreaLight overwrites them every frame), nothing of a spot's.
+    // Walking visit() checks the names match the table's keys.
+    auto readOnlyKeys = [](const LightSettings& l) {
+        std::vector<std::string> keys;
+        LightSettings copy = l;
+        copy.visit([&](auto&, const FieldMeta& m) {
+            if (l.readOnly(m.key)) keys.push_back(m.key);
+        });
+        return keys;
+    };
+    static_assert(HasReadOnlyFields<LightSettings>);
+    LightSettings area;
+    area.type = LightType::Area;
+    area.emitter = 0;
+    EXPECT_EQ(readOnlyKeys(area), (std::vector<std::string>{"position", "direction"}));
+    LightSettings spot;
+    spot.type = LightType::Spot;
+    EXPECT_TRUE(readOnlyKeys(spot).empty());
+    EXPECT_NE(std::string(area.readOnly("position")).find("emissive surface"), std::string::npos);
+}
+
 class AreaLightGL : public test::GLTest {};
 
 constexpr int kSize = 128;
@@ -255,6 +278,41 @@ TEST_F(AreaLightGL, AnEmitterSwitchedOffGoesDarkInTheRasterAndTheReference) {
     r.render(off);
     EXPECT_EQ(r.readHDR()[(16 * 32 + 16) * 4], 0.0f);
     EXPECT_EQ(pt.render(off, rs).rgb[(16 * 32 + 16) * 3], 0.0f);
+}
+
+TEST_F(AreaLightGL, TheBuiltinLampCornellIsLitByItsQuadAlone) {
+    // cornell_lamp (CI's quad-lit case, no ../shared needed): one emissive quad under the
+    // ceiling, no punctual light, so its presets get the one area light and no default sun.
+    Scene s = makeBuiltinScene("cornell_lamp");
+    EXPECT_TRUE(s.lights.empty());
+    ASSERT_EQ(s.emitters.size(), 1u);
+    EXPECT_EQ(s.emitters[0].name, "lamp");
+    EXPECT_NEAR(s.emitters[0].area, 0.47f * 0.38f, 1e-4f);
+    EXPECT_NEAR(s.emitters[0].normal.y, -1.0f, 1e-5f);
+    Preset p = loadPreset(std::filesystem::path(GI_PRESET_DIR) / "cornell_lamp.json");
+    EXPECT_EQ(p.header.scene, "cornell_lamp");
+    EXPECT_FALSE(usesDefaultSun(p, s));
+    FrameSettings fs = frameSettings(p, s, 16, 12);
+    ASSERT_EQ(fs.lights.size(), 1u);
+    EXPECT_EQ(fs.lights[0].type, LightType::Area);
+
+    // The reference sees the lamp and nothing else: with it switched off the image is black.
+    PathTracer pt(s);
+    ReferenceSettings rs;
+    rs.spp = 2;
+    auto total = [](const ImageRGB& img) {
+        double sum = 0.0;
+        for (float v : img.rgb) sum += v;
+        return sum;
+    };
+    EXPECT_GT(total(pt.render(fs, rs)), 1.0);
+    p.lightsFromScene = false;
+    p.lights = {sceneLights(s).at(0)};
+    p.lights[0].enabled = false;
+    FrameSettings off = frameSettings(p, s, 16, 12);
+    EXPECT_TRUE(off.lights.empty());
+    EXPECT_FALSE(usesDefaultSun(p, s));
+    EXPECT_EQ(total(pt.render(off, rs)), 0.0);
 }
 
 }  // namespace

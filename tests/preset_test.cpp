@@ -87,6 +87,30 @@ TEST(Preset, MessagesNameTheKey) {
     EXPECT_NE(errorOf(json::array()).find("must be a JSON object"), std::string::npos);
 }
 
+TEST(Preset, SchemaVersion1SSAOLengthsInMetresAreRefusedWithTheConversion) {
+    // Version 2 made ssao.radius and ssao.bias fractions of the scene's diagonal. A version-1
+    // preset that sets them meant metres: it is refused naming the key and the conversion, never
+    // read in the new unit. One that leaves them out means the same in both versions.
+    json v1 = {{"schemaVersion", 1}, {"scene", "cornell"}, {"ssao", {{"enabled", true}}}};
+    Preset p = presetFromJson(v1, "old.json");
+    EXPECT_TRUE(p.ssao.enabled);
+    EXPECT_EQ(p.ssao.radius, SSAOSettings{}.radius);
+    for (const char* key : {"radius", "bias"}) {
+        json j = v1;
+        j["ssao"][key] = 0.02;
+        std::string msg = errorOf(j);
+        EXPECT_NE(msg.find(std::string("p.json: key 'ssao.") + key + "': schemaVersion 1 gives it in metres"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("fraction of the scene bounds' diagonal"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("set schemaVersion to 2"), std::string::npos) << msg;
+        j["schemaVersion"] = 2;
+        Preset now = presetFromJson(j, "new.json");
+        EXPECT_FLOAT_EQ(std::string(key) == "radius" ? now.ssao.radius : now.ssao.bias, 0.02f);
+    }
+    // Saved presets carry the version whose units they use.
+    EXPECT_EQ(presetToJson(p)["schemaVersion"], 2);
+    EXPECT_EQ(Preset::kSchemaVersion, 2);
+}
+
 TEST(Preset, BrokenFilesGiveOneLineErrors) {
     auto dir = test::tempDir();
     auto write = [&](const char* name, const char* text) {

@@ -70,7 +70,7 @@ TEST(RenderCLI, EveryShippedPresetRenders) {
         EXPECT_TRUE(stats["gpuMsTotal"].is_number());
         EXPECT_GT(stats["memoryBytes"].get<double>(), 0.0);
         EXPECT_FALSE(stats["renderer"].get<std::string>().empty());
-        EXPECT_EQ(stats["settings"]["schemaVersion"], 1);
+        EXPECT_EQ(stats["settings"]["schemaVersion"], Preset::kSchemaVersion);
         double mean = 0;
         for (size_t i = 0; i < img.rgba.size(); i += 4) mean += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
         EXPECT_GT(mean / (img.rgba.size() / 4 * 3), 8.0) << entry.path() << " renders (nearly) black";

@@ -1,6 +1,8 @@
 // SSAO: the kernel and noise tile (CPU), and GL tests on G-buffers the Renderer draws: flat
 // ground is unoccluded, a crease is darker than open floor, radius and strength switch the
-// effect off, disabled fills ones, and two runs give the same pixels.
+// effect off, disabled fills ones, two runs give the same pixels, and radius and bias follow the
+// scene's size (the same scene 100x larger gives the same AO at the default settings).
+#include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/mesh_builder.h"
 #include "gi/ssao/ssao.h"
@@ -9,12 +11,17 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 
 namespace gi {
 namespace {
 
 constexpr int kSize = 128;
+// The built-in Cornell box's diagonal: the fixtures below run the pass directly with settings
+// meaning what they did in metres there (the defaults are 0.5 m and 0.025 m).
+const float kCornellDiagonal = std::sqrt(12.0f);
 
 // A large floor at y = 0, optionally with a wall at z = -1 facing +z: the crease runs along x.
 Scene floorScene(bool wall) {
@@ -64,7 +71,7 @@ struct Fixture {
         gl::GpuTimer timer;
         timer.beginFrame();
         ssao.execute(s, viewTexture(renderer, "depth"), viewTexture(renderer, "normal"), fs.width, fs.height, view(),
-                     proj(), timer);
+                     proj(), kCornellDiagonal, timer);
         timer.endFrame();
         timer.resolve(true);
         std::vector<float> ao(size_t(fs.width) * fs.height);
@@ -163,7 +170,7 @@ TEST_F(SSAOTest, TinyRadiusOrZeroStrengthGivesOne) {
     Fixture f(floorScene(true), frame({0, 1.3f, 1.8f}, {0, 0.4f, -0.5f}));
     SSAOSettings s;
     s.enabled = true;
-    s.radius = 0.01f;  // under the bias: nothing can count as occluded
+    s.radius = 0.001f;  // 3.5 mm, under the 25 mm bias: nothing can count as occluded
     std::vector<float> ao = f.run(s);
     EXPECT_GE(*std::min_element(ao.begin(), ao.end()), 0.99f);
 
@@ -217,12 +224,66 @@ TEST_F(SSAOTest, TwoRunsGiveTheSamePixels) {
     gl::GpuTimer timer;
     timer.beginFrame();
     other->execute(s, viewTexture(f.renderer, "depth"), viewTexture(f.renderer, "normal"), kSize, kSize, f.view(),
-                   f.proj(), timer);
+                   f.proj(), kCornellDiagonal, timer);
     timer.endFrame();
     std::vector<float> second(first.size());
     glGetTextureImage(other->aoTexture(), 0, GL_RED, GL_FLOAT, GLsizei(second.size() * sizeof(float)), second.data());
     EXPECT_EQ(first, second);
     EXPECT_EQ(first, f.run(s));
+}
+
+// The AO the renderer computes for a whole frame (the "ssao" view), at the default settings.
+std::vector<float> frameAO(const Scene& scene, const FrameSettings& fs) {
+    Renderer renderer;
+    renderer.setScene(scene);
+    renderer.render(fs);
+    std::vector<float> ao(size_t(fs.width) * fs.height);
+    glGetTextureImage(viewTexture(renderer, "ssao"), 0, GL_RED, GL_FLOAT, GLsizei(ao.size() * sizeof(float)), ao.data());
+    return ao;
+}
+
+TEST_F(SSAOTest, SameSceneAHundredTimesLargerGivesTheSameAO) {
+    // The built-in Cornell box in metres and in centimetres (every position, the camera and the
+    // light times 100): radius and bias are fractions of the scene's diagonal, so the defaults
+    // give the same AO. In metres they would reach 1/100 as far in the larger one.
+    Scene metres = makeBuiltinScene("cornell");
+    Scene centimetres = metres;
+    const float k = 100.0f;
+    for (Vertex& v : centimetres.vertices) v.position *= k;
+    centimetres.bounds.min *= k;
+    centimetres.bounds.max *= k;
+    for (LightSettings& l : centimetres.lights) l.position *= k;
+    EXPECT_NEAR(ssaoSceneDiagonal(metres.bounds), kCornellDiagonal, 1e-4f);
+    EXPECT_NEAR(ssaoSceneDiagonal(centimetres.bounds), k * kCornellDiagonal, 1e-2f);
+
+    Preset p;
+    p.header.scene = "cornell";
+    p.lightsFromScene = true;
+    FrameSettings fs = frameSettings(p, metres, kSize, kSize);
+    fs.ssao.enabled = true;
+    FrameSettings large = frameSettings(p, centimetres, kSize, kSize);
+    large.ssao.enabled = true;
+    large.camera.eye *= k;
+    large.camera.target *= k;
+    large.camera.near *= k;
+    large.camera.far *= k;
+
+    std::vector<float> a = frameAO(metres, fs);
+    std::vector<float> b = frameAO(centimetres, large);
+    // Not trivially equal: the box's creases are occluded.
+    float darkest = *std::min_element(a.begin(), a.end());
+    EXPECT_LT(darkest, 0.7f);
+    double sum = 0.0;
+    float worst = 0.0f;
+    for (size_t i = 0; i < a.size(); ++i) {
+        float d = std::abs(a[i] - b[i]);
+        sum += d;
+        worst = std::max(worst, d);
+    }
+    double mean = sum / double(a.size());
+    std::printf("darkest %.3f, mean |difference| %.5f, largest %.4f\n", darkest, mean, worst);
+    EXPECT_LT(mean, 0.002);
+    EXPECT_LT(worst, 0.02f);
 }
 
 }  // namespace

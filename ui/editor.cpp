@@ -20,6 +20,8 @@ Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(
     for (const PassPanelEntry& e : passPanels()) mPanels.emplace_back(e.section, e.create(options));
     for (const std::string& name : options.previewers) mShowPreviewer[name] = true;
     if (!options.coneOverlay) mShowPreviewer["vct.cones"] = false;
+    mOpenLights = options.lightsPanel;
+    mScrollToLights = mOpenLights ? 10 : 0;
     fs::path defaultFile = presetDir() / "default.json";
     bool isPreset = true;
     if (!options.preset.empty()) {
@@ -231,7 +233,13 @@ void Editor::drawPanels() {
         }
         if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) cost |= scenePanel();
         if (ImGui::CollapsingHeader("presets", ImGuiTreeNodeFlags_DefaultOpen)) presetsPanel();
-        if (ImGui::CollapsingHeader("lights")) cost |= lightsPanel();
+        if (mOpenLights) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+        bool lightsOpen = ImGui::CollapsingHeader("lights");
+        if (mScrollToLights > 0) {
+            ImGui::SetScrollHereY(0.0f);
+            --mScrollToLights;
+        }
+        if (lightsOpen) cost |= lightsPanel();
         // Every fixed section the preset has, so a new technique's settings appear by themselves.
         mPreset.forEachSection([&](auto& section) {
             using S = std::decay_t<decltype(section)>;

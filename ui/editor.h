@@ -34,6 +34,7 @@ struct EditorOptions {
     std::vector<std::string> previewers;  // previewers (gi-render --views names) shown from the start
     bool phasePlot = false;        // the Phase function window open from the start (it also opens when volumetric is on)
     bool roughnessMips = false;    // the environment section's Roughness mips panel open, and scrolled to, from the start
+    bool lightsPanel = false;      // the lights section open with every light expanded, and scrolled to, from the start
 };
 
 class Editor {
@@ -94,6 +95,8 @@ private:
     std::vector<std::filesystem::path> mPresetFiles;
 
     std::string mFrameError, mSceneError, mPresetError, mPresetStatus, mShaderLog;
+    bool mOpenLights = false;  // --lights-panel: open the lights section and every light once
+    int mScrollToLights = 0;   // frames left to keep the lights section at the top (the layout settles)
 
     void apply(uint8_t cost);
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and

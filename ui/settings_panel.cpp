@@ -52,6 +52,17 @@ void fieldTooltip(const FieldMeta& m, bool showRange) {
     ImGui::EndTooltip();
 }
 
+void readOnlyTooltip(const FieldMeta& m, const char* reason) {
+    if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 30);
+    ImGui::TextUnformatted(m.description);
+    if (*m.unit) ImGui::Text("unit: %s", m.unit);
+    ImGui::Text("read-only: %s", reason);
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
 bool drawField(float& value, const FieldMeta& m) {
     float v = value;
     bool changed;

@@ -24,6 +24,8 @@ bool drawField(std::vector<float>& value, const FieldMeta& m);
 
 // Tooltip for the last item: description, unit, range (numbers only) and what a change costs.
 void fieldTooltip(const FieldMeta& m, bool showRange);
+// Tooltip for the last item, drawn disabled: description, unit and why it cannot be edited.
+void readOnlyTooltip(const FieldMeta& m, const char* reason);
 
 template <ReflectedEnum E>
 bool drawField(E& value, const FieldMeta& m) {
@@ -66,7 +68,18 @@ uint8_t drawSettings(S& s) {
     // Sections share key names (a light's and the camera's "color", "near"...): scope the IDs.
     ImGui::PushID(S::kSection.data(), S::kSection.data() + S::kSection.size());
     s.visit([&](auto& field, const FieldMeta& m) {
-        if (drawField(field, m)) cost |= uint8_t(m.cost);
+        const char* readOnly = nullptr;
+        if constexpr (HasReadOnlyFields<S>) readOnly = s.readOnly(m.key);
+        if (!readOnly) {
+            if (drawField(field, m)) cost |= uint8_t(m.cost);
+            return;
+        }
+        // Shown with its value, disabled; a copy, so not even a clamp can write to it.
+        auto shown = field;
+        ImGui::BeginDisabled();
+        drawField(shown, m);
+        ImGui::EndDisabled();
+        readOnlyTooltip(m, readOnly);
     });
     ImGui::PopID();
     return cost;

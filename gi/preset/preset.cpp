@@ -51,7 +51,21 @@ Preset presetFromJson(const json& j, const std::string& context) {
         throw Error(context + ": key 'schemaVersion': " + std::to_string(v) +
                     " is newer than this build understands (" + std::to_string(Preset::kSchemaVersion) + ")");
     if (v < 1) throw Error(context + ": key 'schemaVersion': " + std::to_string(v) + " is not a valid version");
-    // Version 1 is the first; migrations from older versions go here as the schema changes.
+    // Migrations from older versions. 1 -> 2: ssao.radius and ssao.bias changed from metres to
+    // fractions of the scene's diagonal. Converting needs the scene's size, which the preset
+    // alone does not give, so a version-1 preset that sets them is refused with the conversion
+    // rather than read in the new unit; one that does not set them means the same in both.
+    if (v < 2) {
+        auto ssao = j.find("ssao");
+        if (ssao != j.end() && ssao->is_object())
+            for (const char* key : {"radius", "bias"})
+                if (ssao->contains(key))
+                    throw Error(detail::where(context, std::string("ssao.") + key) +
+                                ": schemaVersion " + std::to_string(v) +
+                                " gives it in metres; since schemaVersion 2 it is a fraction of the scene bounds' diagonal "
+                                "(the built-in Cornell box's is 3.46 m, so 0.5 m there is 0.144): divide by the scene's "
+                                "diagonal and set schemaVersion to 2");
+    }
 
     std::vector<std::string> keys = topLevelKeys();
     json header = json::object();

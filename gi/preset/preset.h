@@ -46,7 +46,8 @@ struct QualitySettings {
 // The frame's sections (render, toneMap and every pass's, gi/render/render_settings.h) come
 // from FrameSections, so a new technique's section is a preset section with no edit here.
 struct Preset : FrameSections {
-    static constexpr int kSchemaVersion = 1;
+    // 2: ssao.radius and ssao.bias are fractions of the scene's diagonal (metres in 1).
+    static constexpr int kSchemaVersion = 2;
     PresetHeader header;
     CameraSettings camera;
     std::vector<LightSettings> lights;  // used when lightsFromScene is false

@@ -67,6 +67,15 @@ concept ChoiceString = requires(T t) {
 template <class S>
 concept Settings = requires(S s) { S::kSection; };
 
+// A settings struct may also say which of its fields its current values make derived from
+// elsewhere (an area light's position, placed from its emitter every frame): readOnly(key)
+// returns why, or nullptr for a field one can edit. The editor's panels draw such a field
+// disabled, with the reason in its tooltip; JSON and --set are not affected.
+template <class S>
+concept HasReadOnlyFields = requires(const S& s, std::string_view key) {
+    { s.readOnly(key) } -> std::convertible_to<const char*>;
+};
+
 // A settings section that drives a pass declares, besides kSection:
 //   static constexpr PassRole kRole;                     technique (chosen by the preset's
 //                                                        `technique` key) or effect (always present)

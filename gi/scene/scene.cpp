@@ -56,9 +56,9 @@ Texture crateTexture() {
     return t;
 }
 
-Scene makeCornell() {
-    Scene s;
-    s.name = "cornell";
+// The built-in Cornell box's room and boxes, without lights or camera: x and z span -1..1,
+// y 0..2 (the scale of the McGuire CornellBox-Original set).
+void cornellRoom(Scene& s) {
     MeshBuilder b(s);
     // Colours are the Kd values of the McGuire CornellBox-Original set.
     int white = b.material("white", {0.725f, 0.71f, 0.68f});
@@ -71,6 +71,12 @@ Scene makeCornell() {
     b.quad(green, {1, 0, -1}, {0, 0, 2}, {0, 2, 0});     // right wall, -x
     b.box(white, {0.33f, 0.3f, 0.30f}, {0.3f, 0.3f, 0.3f}, -17.0f);   // short box
     b.box(white, {-0.34f, 0.6f, -0.30f}, {0.3f, 0.6f, 0.3f}, 20.0f);  // tall box
+}
+
+Scene makeCornell() {
+    Scene s;
+    s.name = "cornell";
+    cornellRoom(s);
     // A wide downward spot just below the ceiling stands in for the ceiling lamp.
     LightSettings lamp;
     lamp.type = LightType::Spot;
@@ -82,6 +88,24 @@ Scene makeCornell() {
     lamp.outerConeDeg = 80.0f;
     s.lights.push_back(lamp);
     CameraSettings cam;  // the defaults are the classic Cornell view
+    s.cameras.push_back(cam);
+    s.finalize();
+    return s;
+}
+
+// The same room lit only by an emissive quad 2 cm under the ceiling, as in CornellBox-Original:
+// its light's size, place and emission (Ke 17, 12, 4: emissiveFactor (1, 0.706, 0.235) x
+// strength 17), so the area-light path is scored without ../shared. No punctual light: the
+// quad is the frame's one light, an area light, and no default sun is added.
+Scene makeCornellLamp() {
+    Scene s;
+    s.name = "cornell_lamp";
+    cornellRoom(s);
+    MeshBuilder b(s);
+    int lamp = b.material("lamp", {0.78f, 0.78f, 0.78f}, 0.41f);
+    s.materials[size_t(lamp)].emissive = glm::vec3(1.0f, 0.70588f, 0.23529f) * 17.0f;
+    b.quad(lamp, {-0.24f, 1.98f, -0.22f}, {0.47f, 0, 0}, {0, 0, 0.38f});  // faces -y
+    CameraSettings cam;
     s.cameras.push_back(cam);
     s.finalize();
     return s;
@@ -139,7 +163,7 @@ Scene makeSpheres() {
 
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "basic", "spheres"}; }
+std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell_lamp", "basic", "spheres"}; }
 
 bool isBuiltinScene(const std::string& name) {
     for (auto& n : builtinSceneNames())
@@ -149,9 +173,12 @@ bool isBuiltinScene(const std::string& name) {
 
 Scene makeBuiltinScene(const std::string& name) {
     if (name == "cornell") return makeCornell();
+    if (name == "cornell_lamp") return makeCornellLamp();
     if (name == "basic") return makeBasic();
     if (name == "spheres") return makeSpheres();
-    throw Error("unknown built-in scene '" + name + "' (valid: cornell, basic, spheres)");
+    std::string valid;
+    for (const std::string& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;
+    throw Error("unknown built-in scene '" + name + "' (valid: " + valid + ")");
 }
 
 Scene loadScene(const std::string& scene, const std::filesystem::path& presetFolder, double memoryBudgetMB) {

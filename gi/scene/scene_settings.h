@@ -69,6 +69,14 @@ struct LightSettings {
         v(castShadows, {"castShadows", "Render a shadow map for this light", "", 0, 0, Cost::Reallocate});
         v(emitter, {"emitter", "Area: the scene's emissive surface (its index in the Lights panel)", "", -1, 1023, Cost::Reallocate});
     }
+
+    // An area light's position and direction are its emitter's centroid and normal, placed
+    // every frame (placeAreaLight): shown, not edited.
+    const char* readOnly(std::string_view key) const {
+        if (type == LightType::Area && (key == "position" || key == "direction"))
+            return "an area light's position and direction are its emissive surface's centroid and normal";
+        return nullptr;
+    }
 };
 
 }  // namespace gi

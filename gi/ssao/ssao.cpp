@@ -1,5 +1,6 @@
 #include "gi/ssao/ssao.h"
 
+#include "gi/render/gpu_scene.h"
 #include "gi/util/error.h"
 
 #include <glm/gtc/constants.hpp>
@@ -97,6 +98,12 @@ void SSAO::resize(int width, int height) {
     gl::checkFramebuffer(mAOFBO.id(), "SSAO framebuffer incomplete");
 }
 
+float ssaoSceneDiagonal(const Bounds& sceneBounds) {
+    if (!sceneBounds.valid()) return 1.0f;
+    float d = glm::length(sceneBounds.extent());
+    return std::isfinite(d) && d > 0.0f ? d : 1.0f;
+}
+
 void SSAO::buildKernel(int count) {
     std::vector<glm::vec3> kernel = ssaoKernel(count);
     for (int i = 0; i < count; ++i) mParams.kernel[i] = glm::vec4(kernel[size_t(i)], 0.0f);
@@ -106,8 +113,9 @@ void SSAO::buildKernel(int count) {
 }
 
 void SSAO::execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalTexture, int width, int height,
-                   const glm::mat4& view, const glm::mat4& proj, gl::GpuTimer& timer) {
+                   const glm::mat4& view, const glm::mat4& proj, float sceneDiagonal, gl::GpuTimer& timer) {
     GI_ASSERT(width > 0 && height > 0, "SSAO::execute needs a non-empty G-buffer");
+    GI_ASSERT(std::isfinite(sceneDiagonal) && sceneDiagonal > 0.0f, "SSAO::execute needs the scene's size");
     resize(width, height);
     const float one = 1.0f;
     if (!s.enabled) {
@@ -120,8 +128,9 @@ void SSAO::execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalText
     int count = std::clamp(s.sampleCount, 1, kSSAOMaxSamples);
     if (count != mKernelCount) buildKernel(count);
     mParams.sampleCount = count;
-    mParams.radius = s.radius;
-    mParams.bias = s.bias;
+    // The settings are fractions of the scene's diagonal; the shader works in world units.
+    mParams.radius = s.radius * sceneDiagonal;
+    mParams.bias = s.bias * sceneDiagonal;
     mParams.blurRadius = std::max(s.blurRadius, 0);
     mParams.strength = std::max(s.strength, 0.0f);
     mParams.view = view;
@@ -171,7 +180,8 @@ std::vector<DebugView> SSAO::debugViews() const {
 }
 
 void SSAO::beforeLighting(FrameContext& ctx) {
-    execute(ctx.settings.ssao, ctx.depth, ctx.normal, ctx.width, ctx.height, ctx.view, ctx.proj, ctx.timer);
+    execute(ctx.settings.ssao, ctx.depth, ctx.normal, ctx.width, ctx.height, ctx.view, ctx.proj,
+            ssaoSceneDiagonal(ctx.scene.bounds()), ctx.timer);
     ctx.ambientOcclusion = aoTexture();
 }
 

@@ -27,6 +27,9 @@
 //     basis (Duff et al. 2017). Chapman Gram-Schmidts a random vector instead; rotating a fixed
 //     basis gives the same distribution without the case where that vector is parallel to the
 //     normal, and stratifying means every 4x4 blur window averages 16 evenly spread rotations.
+//   - Units: radius and bias are fractions of the scene bounds' diagonal (the source gives
+//     world units, tuned per scene), so the same settings fit a scene at any scale; the pass
+//     multiplies them by the diagonal before upload.
 //   - Occlusion test: the stored surface must lie more than `bias` in front of the sample.
 //     Range check smoothstep(0, 1, radius / |z_pixel - z_stored|): an occluder far in front of
 //     the pixel (a foreground object) fades out instead of drawing a dark halo around itself.
@@ -76,6 +79,9 @@ inline constexpr uint32_t kSSAOSeed = 20110101u;
 std::vector<glm::vec3> ssaoKernel(int count, uint32_t seed = kSSAOSeed);
 // The 4x4 noise tile as (cos, sin) of a rotation about the normal, row-major by (y & 3, x & 3).
 std::array<glm::vec2, 16> ssaoNoise(uint32_t seed = kSSAOSeed);
+// The unit of SSAOSettings::radius and bias: the length of the bounds' diagonal, or 1 (world
+// units) for a scene with no extent.
+float ssaoSceneDiagonal(const Bounds& sceneBounds);
 
 class SSAO final : public Pass {
 public:
@@ -84,8 +90,9 @@ public:
     // Computes AO (1 = unoccluded) into aoTexture() at width x height. The depth texture is the
     // G-buffer's DEPTH_COMPONENT32F, the normal texture its world-space normals; view and proj
     // are the raster's camera matrices, so the pass sees exactly what the G-buffer holds.
+    // sceneDiagonal is the length of the scene bounds' diagonal, the unit of s.radius and s.bias.
     void execute(const SSAOSettings& s, GLuint depthTexture, GLuint normalTexture, int width, int height,
-                 const glm::mat4& view, const glm::mat4& proj, gl::GpuTimer& timer);
+                 const glm::mat4& view, const glm::mat4& proj, float sceneDiagonal, gl::GpuTimer& timer);
 
     // The pass's stage: execute() on the G-buffer, then aoTexture() as the frame's AO.
     void beforeLighting(FrameContext& ctx) override;

@@ -2,6 +2,8 @@
 // generated fields.
 #include "ui/editor.h"
 
+#include "gi/scene/emitters.h"
+
 #include "ui/panel_util.h"
 #include "ui/settings_panel.h"
 
@@ -52,6 +54,9 @@ uint8_t Editor::lightsPanel() {
             title += buf;
         }
         if (!l.enabled) title += " (off)";
+        // The place the frame gives it, whatever the preset holds (the fields are read-only).
+        if (area) lights[i] = placeAreaLight(lights[i], mScene.emitters[size_t(l.emitter)]);
+        if (mOpenLights) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
         if (ImGui::TreeNodeEx("light", area ? 0 : ImGuiTreeNodeFlags_DefaultOpen, "%s", title.c_str())) {
             cost |= drawSettings(lights[i]);
             if (ImGui::SmallButton("Remove light")) removed = int(i);
