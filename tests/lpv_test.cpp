@@ -332,11 +332,12 @@ TEST_F(LPVGL, PointLightAgreesWithASpotOverTheFacesItCovers) {
 
 // A point light in a closed room: the LPV's one bounce (lpv.bounces 1) against the path tracer's
 // one bounce (maxBounces 2, paths of exactly two surface bounces), diffuse only on both sides, at
-// the default 32^3 grid and at 64^3 with as many steps (light crosses the room once, the
-// settings' rule). With KD09's kernel (side faces re-emitted along their normals) and no
-// calibration the LPV ran 1.27x high at 32^3: the accumulation counts light once per step it
-// spends in a cell, and light lingered near the walls that emit it (a spot in the same place:
-// 1.60). tests/lpv_propagation_test.cpp measures the kernel's calibration in free space.
+// the default 32^3 grid and at 64^3 with as many steps (the settings' rule). Without
+// kLPVRadianceScale (the kernel's first-step flux gain, tests/lpv_propagation_test.cpp) the LPV
+// read 1.27 and 1.17; with it, 1.12 and 1.03. It reads high where light lingers near the walls
+// that emit it (a spot in the same place: 1.60 unscaled at 32^3), and rises with more steps than
+// cells (32^3 at 64 steps: 1.33) and with kernels that make light (re-emitting a side face's
+// flux along its evaluation direction, with the scale that fits it to free space: 0.56 and 0.50).
 TEST_F(LPVGL, PointLightIndirectMatchesTheReference) {
     Scene scene = closedRoom(pointLight());
     FrameSettings fs = roomSettings(scene, 256);

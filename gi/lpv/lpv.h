@@ -26,13 +26,14 @@
 //      the flux through its faces: the face it shares with the neighbour (solid angle
 //      0.4006696846) and the 4 side faces (0.4234413544), each weighted by 1 - blocking on the
 //      shared face (the 2-band lobe's constant term removed, so a wall does not block light
-//      running along it). The shared face's flux is re-emitted as a clamped cosine lobe along the
-//      face normal (KD09); a side face's along the direction it was evaluated in, from the
-//      neighbour's centre to the face's centre (KD09 re-emits it along the side face's normal,
-//      turning a fifth of the light by 90 degrees every step: light then diffuses rather than
-//      travels, lingering near its VPLs, reaching 8 cells at a quarter of the inverse-square
-//      law after 32 steps where this kernel reaches half; tests/lpv_propagation_test.cpp). No
-//      blocking in a bounce's first step (the injected light would block itself). The steps'
+//      running along it). Each face's flux is re-emitted as a clamped cosine lobe along that
+//      face's normal (KD09), so the kernel keeps the flux from step to step (its first step on a
+//      cosine lobe excepted, see the calibration below). Light diffuses rather than travels: its
+//      mean distance from a VPL grows as about sqrt(steps) (3 cells after 8 steps, 6 after 32).
+//      Re-emitting a side face's flux along the direction it was evaluated in (neighbour centre
+//      to face centre) moves light further per step but makes light, 1.6 times the VPL's flux
+//      after 32 steps, and loses the point-light room test below (tests/lpv_propagation_test.cpp
+//      checks the flux). No blocking in a bounce's first step (the injected light would block itself). The steps'
 //      results are summed per bounce; then [lpv.bounce, timed in lpv.propagate] the bounce's
 //      injection and propagated light P join the accumulator, and, for the next bounce, each
 //      geometry-volume corner reflects P: albedo / pi * E * GV, with E the irradiance on the
@@ -60,25 +61,29 @@
 //   - Cascades: with cascadeExtent 0 and one cascade, the grid is the scene's bounding cube;
 //     with several, the finest spans the scene's largest side / 2^(count-1), all centred on the
 //     camera and snapped to whole cells of their own size so they do not flicker.
-//   - Radiance calibration: the accumulator counts light once for every step it spends in a
-//     cell, and light under the kernel above advances about half a cell per step, so the raw
-//     sum runs 2.0 to 2.2 times the inverse-square law at 2 to 6 cells from a VPL in free space.
-//     kLPVRadianceScale (0.476, lpv_shared.h) is that measured factor; shade and the bounces
-//     read radiance through it, and the free-space test checks the law within 12 %. It is a
-//     property of the kernel, the same for every scene.
+//   - Radiance calibration: propagation's first step returns 1.1382 times the flux of a cosine
+//     lobe (the 2-band lobe's negative back is clamped away and the rest sampled at 30 face
+//     directions); later steps keep the flux. Every propagated lobe starts as one (a VPL, a
+//     bounce's re-injection), so kLPVRadianceScale = 1 / 1.1382 (lpv_shared.h) scales the
+//     accumulator; shade and the bounces read radiance through it. It is measured, not fitted:
+//     tests/lpv_propagation_test.cpp checks the flux and, with it, the inverse-square law within
+//     15 % at 2 to 4 cells from a VPL after 32 steps.
 //   - Self-illumination damping (KD09 section 5): where the irradiance towards the surface
 //     grows behind it (P - N * half a cell) compared to in front (P + N * half a cell), the light
 //     mostly comes from the surface's own VPLs; it is scaled by front/back, blended by `damping`.
 // Known artefacts: light leaks through walls thinner than a cell (the geometry volume reduces
-// them), one-cell blur of the injected light, energy spreading with many steps. Light still
-// travels slower than a cell per step: with steps = resolution it has not crossed the grid, so
-// light from surfaces more than about 8 cells away arrives short (a point light in a closed
-// 4 x 3 x 4 m room: 0.56 of the path tracer's one bounce at 32^3 and 32 steps, 0.74 at 96
-// steps). Closed rooms do better on a coarse grid with twice as many steps as cells (KD09's
-// heuristic; the Cornell presets use 16^3 and 32 steps). Measured SSIM (128x96 / 256x192,
-// technique none in brackets): built-in Cornell 0.802 / 0.811 (0.694 / 0.724), CornellBox-
-// Original 0.772 / 0.782 (0.749 / 0.773), basic 0.955 / 0.969 (0.948 / 0.966), Sponza
-// 0.803 / 0.806 (0.471 / 0.500), Sponza cascades 0.659 / 0.673.
+// them), one-cell blur of the injected light, energy spreading with many steps, and
+// self-illumination (a lit floor brightens itself through its own VPLs and, with bounces, its
+// own reflection; damping reduces it). The accumulator counts light once for every step it
+// spends in a cell and diffusing light lingers near its source, so with more steps than cells a
+// closed room reads high (a point light in a 4 x 3 x 4 m room, one bounce against the path
+// tracer's: 1.12 at 32^3 and 32 steps, 1.03 at 64^3 and 64 steps, 1.33 at 32^3 and 64 steps).
+// A small closed box does better on a coarse grid: the Cornell presets use 16^3 and 32 steps
+// (the built-in Cornell box at the default 32^3 and 32 steps: SSIM 0.672 / 0.682, below
+// technique none's 0.694 / 0.724). Measured SSIM (128x96 / 256x192, technique none in
+// brackets): built-in Cornell 0.792 / 0.797 (0.694 / 0.724), CornellBox-Original 0.786 / 0.793
+// (0.749 / 0.773), basic 0.951 / 0.966 (0.948 / 0.966), Sponza 0.748 / 0.751 (0.471 / 0.500),
+// Sponza cascades 0.650 / 0.664.
 #pragma once
 
 #include "gi/gl/handle.h"

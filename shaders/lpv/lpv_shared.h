@@ -27,11 +27,14 @@ GI_CONST float kLPVMinSurfelCosine = 0.2;
 // rsm: a texel's area over cos theta is capped at 1 / this for light grazing the surface.
 GI_CONST float kLPVMinRSMCosine = 0.05;
 // shade, bounce: radiance is the accumulated SH intensity over the cell face area times this.
-// Accumulation counts light once for every step it spends in a cell, and under the propagation
-// kernel (propagate.comp) light lingers about two steps per cell: in free space the accumulated
-// irradiance of a cosine-lobe VPL is 2.0 to 2.2 times the inverse-square law's at 2 to 6 cells
-// (tests/lpv_propagation_test.cpp measures it and checks the calibrated value).
-GI_CONST float kLPVRadianceScale = 0.476;
+// Every lobe the LPV propagates starts as a clamped cosine lobe (a VPL, a bounce's re-injection),
+// and propagation's first step returns 1.1382 times such a lobe's flux: the 2-band lobe is
+// (1/4 + cos/2) / pi per unit flux, negative behind, and the gather clamps that back lobe away
+// (+1/8) and samples the rest at the 30 face directions. From the second step on the kernel
+// keeps the flux (within 0.1 % over 32 steps). This is 1 / 1.1382, so the propagated light
+// carries the flux injected (tests/lpv_propagation_test.cpp measures both). The injection itself,
+// summed into the same accumulator, is scaled alike (one factor for the whole volume).
+GI_CONST float kLPVRadianceScale = 0.8786;
 
 // Uniform-buffer binding of LPVBlock.
 GI_CONST int kLPVBlockBinding = 0;

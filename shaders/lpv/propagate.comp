@@ -1,9 +1,7 @@
 // One propagation step, as a gather (KD09; seed 000 section 1). A cell receives from each of its
 // 6 neighbours the flux through 5 of its faces: the face it shares with the neighbour (solid
-// angle 0.4006696846 seen from the neighbour's centre) and the 4 faces beside it (0.4234413544).
-// The shared face re-emits its flux as a clamped cosine lobe along its normal; a side face along
-// the direction it was evaluated in (neighbour centre to face centre), not along its own normal
-// as KD09 does, so light keeps travelling instead of turning 90 degrees (gi/lpv/lpv.h). The lobes carry the weights solid
+// angle 0.4006696846 seen from the neighbour's centre) and the 4 faces beside it (0.4234413544),
+// each re-emitted as a clamped cosine lobe towards that face. The lobes carry the weights solid
 // angle / pi: flux = solid angle * intensity, and a lobe of flux F has intensity F / pi * cos.
 // The loops have constant bounds so the compiler folds each face's basis and lobe into constants
 // (a table of uniforms measured slower on llvmpipe).
@@ -53,7 +51,7 @@ void main() {
             vec3 side = vec3(kDirections[s]);
             if (abs(dot(side, fd)) > 0.5) continue;
             e = shBasis(0.894427191 * fd + 0.447213595 * side);
-            lobe = shCosLobe(0.894427191 * fd + 0.447213595 * side) * (kSideFace * transmit);
+            lobe = shCosLobe(side) * (kSideFace * transmit);
             outR += max(dot(r, e), 0.0) * lobe;
             outG += max(dot(g, e), 0.0) * lobe;
             outB += max(dot(b, e), 0.0) * lobe;
