@@ -19,7 +19,7 @@ using namespace shared;
 namespace {
 
 constexpr int kCoefficients = 12;  // 4 SH coefficients x RGB per cell
-constexpr size_t kRSMBytesPerTexel = 8 + 8 + 16 + 4;
+constexpr size_t kRSMBytesPerTexel = 8 + 8 + 16 + 4 + 4;  // flux, normal, position, depth, albedo
 
 size_t cells(int res) { return size_t(res) * res * res; }
 size_t corners(int res) { return size_t(res + 1) * (res + 1) * (res + 1); }
@@ -92,11 +92,12 @@ LPV::LPV()
       mGeometryResolveProg("lpv.geometryResolve", {{GL_COMPUTE_SHADER, "lpv/geometry_resolve.comp"}}),
       mTransmitProg("lpv.transmit", {{GL_COMPUTE_SHADER, "lpv/transmit.comp"}}),
       mPropagateProg("lpv.propagate", {{GL_COMPUTE_SHADER, "lpv/propagate.comp"}}),
+      mBounceProg("lpv.bounce", {{GL_COMPUTE_SHADER, "lpv/bounce.comp"}}),
       mResolveProg("lpv.resolve", {{GL_COMPUTE_SHADER, "lpv/resolve.comp"}}),
       mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}),
       mBlock(kLPVBlockName, kLPVBlockBinding) {
     for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
-                           &mResolveProg, &mShadeProg})
+                           &mBounceProg, &mResolveProg, &mShadeProg})
         mBlock.requireIn(*p);
     mMaterialBinding.requireIn(mRSMProg);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
@@ -106,8 +107,8 @@ LPV::~LPV() = default;
 
 size_t LPV::estimateBytes(const FrameSettings& fs) {
     const LPVSettings& s = fs.lpv;
-    size_t perCascade = 4 * cells(s.gridResolution) * kCoefficients * 4  // inject, ping, pong, accum
-                        + 2 * corners(s.gridResolution) * 4 * 4           // geometry from RSMs and G-buffer
+    size_t perCascade = 5 * cells(s.gridResolution) * kCoefficients * 4  // inject, ping, pong, gather, accum
+                        + 3 * corners(s.gridResolution) * 4 * 4           // geometry from RSMs and G-buffer, albedo
                         + 3 * cells(s.gridResolution) * 8                 // SH textures
                         + 2 * corners(s.gridResolution) * 8               // geometry textures
                         + cells(s.gridResolution) * 32;                   // face transmittance
@@ -135,7 +136,9 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
             c.ping = zeroBuffer(shBytes);
             c.pong = zeroBuffer(shBytes);
             c.accum = zeroBuffer(shBytes);
+            c.gather = zeroBuffer(shBytes);
             c.geometryRSM = zeroBuffer(corners(r) * 16);
+            c.albedo = zeroBuffer(corners(r) * 16);
             c.geometryGBuffer = zeroBuffer(corners(r) * 16);
             c.transmit = zeroBuffer(cells(r) * 32);
             c.shR = gl::Texture::create3D(GL_RGBA16F, r, r, r);
@@ -143,8 +146,8 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
             c.shB = gl::Texture::create3D(GL_RGBA16F, r, r, r);
             c.geometryRSMVolume = gl::Texture::create3D(GL_RGBA16F, r + 1, r + 1, r + 1);
             c.geometryGBufferVolume = gl::Texture::create3D(GL_RGBA16F, r + 1, r + 1, r + 1);
-            mVolumeBytes += 4 * shBytes + c.shR.bytes() * 3;
-            mGeometryBytes += 2 * corners(r) * 16 + 2 * c.geometryRSMVolume.bytes() + cells(r) * 32;
+            mVolumeBytes += 5 * shBytes + c.shR.bytes() * 3;
+            mGeometryBytes += 3 * corners(r) * 16 + 2 * c.geometryRSMVolume.bytes() + cells(r) * 32;
             mCascadeData.push_back(std::move(c));
         }
     }
@@ -159,15 +162,17 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
             m.normal = gl::Texture::create2D(GL_RGBA16F, n, n);
             m.position = gl::Texture::create2D(GL_RGBA32F, n, n);
             m.depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, n, n);
+            m.albedo = gl::Texture::create2D(GL_RGBA8, n, n);
             m.fbo = gl::createFramebuffer();
             glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT0, m.flux.id(), 0);
             glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT1, m.normal.id(), 0);
             glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT2, m.position.id(), 0);
+            glNamedFramebufferTexture(m.fbo.id(), GL_COLOR_ATTACHMENT3, m.albedo.id(), 0);
             glNamedFramebufferTexture(m.fbo.id(), GL_DEPTH_ATTACHMENT, m.depth.id(), 0);
-            const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-            glNamedFramebufferDrawBuffers(m.fbo.id(), 3, bufs);
+            const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+            glNamedFramebufferDrawBuffers(m.fbo.id(), 4, bufs);
             gl::checkFramebuffer(m.fbo.id(), "RSM framebuffer incomplete");
-            mRSMBytes += m.flux.bytes() + m.normal.bytes() + m.position.bytes() + m.depth.bytes();
+            mRSMBytes += m.flux.bytes() + m.normal.bytes() + m.position.bytes() + m.depth.bytes() + m.albedo.bytes();
             mRSMs.push_back(std::move(m));
         }
     }
@@ -201,7 +206,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     auto draw = [&](RSM& m, size_t li) {
         glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
         const float zero[4] = {0, 0, 0, 0};
-        for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
+        for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
         const float one = 1.0f;
         glClearNamedFramebufferfv(m.fbo.id(), GL_DEPTH, 0, &one);
         LPVParams p{};
@@ -304,8 +309,10 @@ void LPV::buildGeometry(const FrameContext& ctx) {
     for (auto& c : mCascadeData) {
         clearBuffer(c.geometryRSM);
         clearBuffer(c.geometryGBuffer);
+        clearBuffer(c.albedo);
     }
-    if (!ctx.settings.lpv.occlusion) {
+    // Bounces past the first reflect light at the geometry volume, occlusion or not.
+    if (!ctx.settings.lpv.occlusion && ctx.settings.lpv.bounces <= 1) {
         const float zero[4] = {0, 0, 0, 0};
         for (auto& c : mCascadeData) {
             glClearTexImage(c.geometryRSMVolume.id(), 0, GL_RGBA, GL_FLOAT, zero);
@@ -318,6 +325,7 @@ void LPV::buildGeometry(const FrameContext& ctx) {
     for (const RSM& m : mRSMs) {
         glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(kLPVImageAlbedo, m.albedo.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
         for (size_t k = 0; k < mBoxes.size(); ++k) {
             if (!m.feeds(k)) continue;
             LPVParams p{};
@@ -327,12 +335,15 @@ void LPV::buildGeometry(const FrameContext& ctx) {
             p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
             mBlock.set(p);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryRSM.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, mCascadeData[k].albedo.id());
             glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
         }
     }
     // Surfels from the camera's G-buffer, subsampled to about 128 x 128 samples.
     int stride = std::max(1, std::max(ctx.width, ctx.height) / 128);
+    glBindTextureUnit(kUnitAlbedo, ctx.albedo);
     glBindTextureUnit(kUnitNormal, ctx.normal);
+    glBindTextureUnit(kUnitMaterial, ctx.material);
     glBindTextureUnit(kUnitDepth, ctx.depth);
     for (size_t k = 0; k < mCascadeData.size(); ++k) {
         LPVParams p{};
@@ -347,6 +358,7 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
         mBlock.set(p);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryGBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, mCascadeData[k].albedo.id());
         // One invocation per `stride`-th G-buffer pixel.
         const int samplesX = (ctx.width + stride - 1) / stride, samplesY = (ctx.height + stride - 1) / stride;
         glDispatchCompute(gl::groupCount(samplesX, shared::kGroup2D), gl::groupCount(samplesY, shared::kGroup2D), 1);
@@ -385,7 +397,6 @@ void LPV::propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, i
 void LPV::propagate(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("lpv.propagate");
     const LPVSettings& s = ctx.settings.lpv;
-    size_t bytes = cells(mResolution) * kCoefficients * 4;
     if (s.occlusion) {
         mTransmitProg.use();
         LPVParams p{};
@@ -406,12 +417,30 @@ void LPV::propagate(const FrameContext& ctx) {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     for (auto& c : mCascadeData) {
-        glCopyNamedBufferSubData(c.inject.id(), c.accum.id(), 0, 0, GLsizeiptr(bytes));
-        GLuint src = c.inject.id(), dst = c.ping.id();
-        for (int step = 0; step < s.propagationSteps; ++step) {
-            propagateStep(src, dst, c.accum.id(), c.transmit.id(), mResolution, s.occlusion && step > 0);
-            src = dst;
-            dst = dst == c.ping.id() ? c.pong.id() : c.ping.id();
+        clearBuffer(c.accum);
+        for (int bounce = 0; bounce < s.bounces; ++bounce) {
+            // The bounce's injection propagates into `gather`; bounce.comp adds both to the total
+            // and replaces the injection with the light the geometry volume reflects.
+            clearBuffer(c.gather);
+            GLuint src = c.inject.id(), dst = c.ping.id();
+            for (int step = 0; step < s.propagationSteps; ++step) {
+                propagateStep(src, dst, c.gather.id(), c.transmit.id(), mResolution, s.occlusion && step > 0);
+                src = dst;
+                dst = dst == c.ping.id() ? c.pong.id() : c.ping.id();
+            }
+            mBounceProg.use();
+            LPVParams p{};
+            p.resolution = mResolution;
+            mBlock.set(p);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceGather, c.gather.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceInject, c.inject.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceTotal, c.accum.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceGeometryRSM, c.geometryRSM.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceGeometryGBuffer, c.geometryGBuffer.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceAlbedo, c.albedo.id());
+            GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
+            glDispatchCompute(g, g, g);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
     }
     mResolveProg.use();
@@ -558,8 +587,7 @@ std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLight
 bool LPV::reloadShaders(std::string& log) {
     bool ok = true;
     for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
-                           &mResolveProg,
-                           &mShadeProg})
+                           &mBounceProg, &mResolveProg, &mShadeProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

@@ -19,17 +19,32 @@
 //      one-sided (a surfel blocks light hitting its front) and the two sources often see opposite
 //      sides of a thin wall, or the same surface: they stay in two volumes and each face takes
 //      the larger of their blockings, so a thin wall blocks both ways and nothing counts twice.
+//      Each surfel also adds its diffuse albedo (RSM: a fourth attachment; G-buffer: base colour
+//      x (1 - metallic)) weighted by its coverage to an albedo volume on the same corners.
 //   4. Propagation [lpv.propagate]: once per frame, the transmittance of every cell face from the
-//      geometry volume; then the gather steps. Each cell takes from its 6 neighbours the flux
-//      through its faces: the face it shares with the neighbour (solid angle 0.4006696846) and the
-//      4 side faces (0.4234413544), each re-emitted as a clamped cosine lobe towards that face,
-//      weighted by 1 - blocking on the shared face (the 2-band lobe's constant term removed, so a
-//      wall does not block light running along it). No blocking in the first step (the
-//      injected light would block itself). The result of every step is added to an accumulator.
+//      geometry volume; then, per bounce, the gather steps. Each cell takes from its 6 neighbours
+//      the flux through its faces: the face it shares with the neighbour (solid angle
+//      0.4006696846) and the 4 side faces (0.4234413544), each weighted by 1 - blocking on the
+//      shared face (the 2-band lobe's constant term removed, so a wall does not block light
+//      running along it). Each face's flux is re-emitted as a clamped cosine lobe along that
+//      face's normal (KD09), so the kernel keeps the flux from step to step (its first step on a
+//      cosine lobe excepted, see the calibration below). Light diffuses rather than travels: its
+//      mean distance from a VPL grows as about sqrt(steps) (3 cells after 8 steps, 6 after 32).
+//      Re-emitting a side face's flux along the direction it was evaluated in (neighbour centre
+//      to face centre) moves light further per step but makes light, 1.6 times the VPL's flux
+//      after 32 steps, and loses the point-light room test below (tests/lpv_propagation_test.cpp
+//      checks the flux). No blocking in a bounce's first step (the injected light would block itself). The steps'
+//      results are summed per bounce; then [lpv.bounce, timed in lpv.propagate] the bounce's
+//      injection and propagated light P join the accumulator, and, for the next bounce, each
+//      geometry-volume corner reflects P: albedo / pi * E * GV, with E the irradiance on the
+//      corner's mean normal (the direction of GV's band 1), injected half a cell along that
+//      normal (as VPLs are). `bounces` 1 is KD09's single bounce; closed rooms need more (the
+//      Cornell box's ceiling sees only bounced light).
 //   5. Shading [lpv.shade]: per pixel, the finest cascade containing the point, blended towards
 //      the next over the outer tenth of the cascade (LH04), trilinear SH lookups half a cell in
 //      front of the surface (its own blocking sits on the corners around it), irradiance
-//      E = dot(L, cosLobe(-N)) with radiance L = intensity / cell face area, written as E / pi.
+//      E = dot(L, cosLobe(-N)) with radiance L = kLPVRadianceScale * intensity / cell face area,
+//      written as E / pi.
 //
 // Choices where the seed is silent (documented and tested):
 //   - Flux per RSM texel is physical: albedo * light * projected texel area (directional) or
@@ -46,11 +61,29 @@
 //   - Cascades: with cascadeExtent 0 and one cascade, the grid is the scene's bounding cube;
 //     with several, the finest spans the scene's largest side / 2^(count-1), all centred on the
 //     camera and snapped to whole cells of their own size so they do not flicker.
+//   - Radiance calibration: propagation's first step returns 1.1382 times the flux of a cosine
+//     lobe (the 2-band lobe's negative back is clamped away and the rest sampled at 30 face
+//     directions); later steps keep the flux. Every propagated lobe starts as one (a VPL, a
+//     bounce's re-injection), so kLPVRadianceScale = 1 / 1.1382 (lpv_shared.h) scales the
+//     accumulator; shade and the bounces read radiance through it. It is measured, not fitted:
+//     tests/lpv_propagation_test.cpp checks the flux and, with it, the inverse-square law within
+//     15 % at 2 to 4 cells from a VPL after 32 steps.
 //   - Self-illumination damping (KD09 section 5): where the irradiance towards the surface
 //     grows behind it (P - N * half a cell) compared to in front (P + N * half a cell), the light
 //     mostly comes from the surface's own VPLs; it is scaled by front/back, blended by `damping`.
 // Known artefacts: light leaks through walls thinner than a cell (the geometry volume reduces
-// them), one-cell blur of the injected light, energy spreading with many steps.
+// them), one-cell blur of the injected light, energy spreading with many steps, and
+// self-illumination (a lit floor brightens itself through its own VPLs and, with bounces, its
+// own reflection; damping reduces it). The accumulator counts light once for every step it
+// spends in a cell and diffusing light lingers near its source, so with more steps than cells a
+// closed room reads high (a point light in a 4 x 3 x 4 m room, one bounce against the path
+// tracer's: 1.12 at 32^3 and 32 steps, 1.03 at 64^3 and 64 steps, 1.33 at 32^3 and 64 steps).
+// A small closed box does better on a coarse grid: the Cornell presets use 16^3 and 32 steps
+// (the built-in Cornell box at the default 32^3 and 32 steps: SSIM 0.672 / 0.682, below
+// technique none's 0.694 / 0.724). Measured SSIM (128x96 / 256x192, technique none in
+// brackets): built-in Cornell 0.792 / 0.797 (0.694 / 0.724), CornellBox-Original 0.786 / 0.793
+// (0.749 / 0.773), basic 0.951 / 0.966 (0.948 / 0.966), Sponza 0.748 / 0.751 (0.471 / 0.500),
+// Sponza cascades 0.650 / 0.664.
 #pragma once
 
 #include "gi/gl/handle.h"
@@ -104,7 +137,7 @@ public:
 
 private:
     struct RSM {
-        gl::Texture flux, normal, position, depth;
+        gl::Texture flux, normal, position, depth, albedo;
         gl::Framebuffer fbo;
         glm::mat4 viewProj{1.0f};
         float texelArea = 0.0f;  // directional: projected world area of a texel
@@ -115,12 +148,12 @@ private:
         bool feeds(size_t k) const { return cascade < 0 || size_t(cascade) == k; }
     };
     struct Cascade {
-        gl::Buffer inject, ping, pong, accum, geometryRSM, geometryGBuffer, transmit;
+        gl::Buffer inject, ping, pong, gather, accum, geometryRSM, geometryGBuffer, albedo, transmit;
         gl::Texture shR, shG, shB, geometryRSMVolume, geometryGBufferVolume;
     };
 
-    gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mResolveProg,
-        mShadeProg;
+    gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
+        mResolveProg, mShadeProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
     MaterialBinding mMaterialBinding;  // the RSM pass reads it
     std::vector<Cascade> mCascadeData;

@@ -22,6 +22,7 @@ struct LPVSettings {
     float occlusionStrength = 1.0f;  // scale of the blocking potential
     float intensity = 1.0f;       // scale of the indirect light
     float damping = 0.5f;         // self-illumination damping, 0 (off) to 1
+    int bounces = 2;              // diffuse bounces: 1 is KD09's single bounce; each more re-injects the propagated light at the geometry volume times its albedo
 
     template <class V>
     void visit(V&& v) {
@@ -36,6 +37,7 @@ struct LPVSettings {
         v(occlusionStrength, {"occlusionStrength", "Scale of the geometry volume's blocking", "", 0, 8});
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
         v(damping, {"damping", "Self-illumination damping (0 off, 1 full)", "", 0, 1});
+        v(bounces, {"bounces", "Diffuse bounces (1: KD09; more re-inject the propagated light at the geometry volume)", "", 1, 4});
     }
 };
 

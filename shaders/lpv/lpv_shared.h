@@ -26,6 +26,15 @@ GI_CONST float kLPVCascadeBlend = 0.1;
 GI_CONST float kLPVMinSurfelCosine = 0.2;
 // rsm: a texel's area over cos theta is capped at 1 / this for light grazing the surface.
 GI_CONST float kLPVMinRSMCosine = 0.05;
+// shade, bounce: radiance is the accumulated SH intensity over the cell face area times this.
+// Every lobe the LPV propagates starts as a clamped cosine lobe (a VPL, a bounce's re-injection),
+// and propagation's first step returns 1.1382 times such a lobe's flux: the 2-band lobe is
+// (1/4 + cos/2) / pi per unit flux, negative behind, and the gather clamps that back lobe away
+// (+1/8) and samples the rest at the 30 face directions. From the second step on the kernel
+// keeps the flux (within 0.1 % over 32 steps). This is 1 / 1.1382, so the propagated light
+// carries the flux injected (tests/lpv_propagation_test.cpp measures both). The injection itself,
+// summed into the same accumulator, is scaled alike (one factor for the whole volume).
+GI_CONST float kLPVRadianceScale = 0.8786;
 
 // Uniform-buffer binding of LPVBlock.
 GI_CONST int kLPVBlockBinding = 0;
@@ -39,11 +48,21 @@ GI_CONST int kLPVBufferSource = 0;           // propagate: the step's input
 GI_CONST int kLPVBufferDestination = 1;      // propagate: the step's output
 GI_CONST int kLPVBufferAccum = 2;            // propagate adds to it, resolve reads it
 GI_CONST int kLPVBufferTransmit = 3;         // transmit writes it, propagate reads it
+GI_CONST int kLPVBufferGeometryAlbedo = 1;   // geometry: the corners' albedo (RGB x coverage, coverage) it adds to
+// bounce: a bounce's propagated light, its injection (replaced by the next bounce's), the total
+// shade reads, and the corners' blocking (RSM, G-buffer) and albedo.
+GI_CONST int kLPVBufferBounceGather = 0;
+GI_CONST int kLPVBufferBounceInject = 1;
+GI_CONST int kLPVBufferBounceTotal = 2;
+GI_CONST int kLPVBufferBounceGeometryRSM = 3;
+GI_CONST int kLPVBufferBounceGeometryGBuffer = 4;
+GI_CONST int kLPVBufferBounceAlbedo = 5;
 
 // Image bindings. The RSM's three images (inject reads all, geometry normal and position).
 GI_CONST int kLPVImageFlux = 0;
 GI_CONST int kLPVImageNormal = 1;
 GI_CONST int kLPVImagePosition = 2;
+GI_CONST int kLPVImageAlbedo = 3;  // the RSM's diffuse albedo (geometry reads it)
 // geometry_resolve's two volumes.
 GI_CONST int kLPVImageGeometryRSM = 0;
 GI_CONST int kLPVImageGeometryGBuffer = 1;

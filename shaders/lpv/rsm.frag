@@ -1,5 +1,5 @@
 // Reflective shadow map texel: world position (w: the surfel's world area), normal facing the
-// light, and the flux the surfel reflects diffusely: albedo * light * projected texel area
+// light, diffuse albedo (the geometry volume's, for bounces), and the flux the surfel reflects diffusely: albedo * light * projected texel area
 // (directional) or albedo * intensity * texel solid angle (spot, and each face of a point light's
 // cube), so the total does not depend on the map's resolution. The intensity towards the texel
 // is the light model's, color * lightProfile(l, dist, cosAxis), whatever the light's kind. The
@@ -17,6 +17,7 @@ in vec2 vUV1;
 layout(location = 0) out vec4 oFlux;
 layout(location = 1) out vec4 oNormal;
 layout(location = 2) out vec4 oPosition;
+layout(location = 3) out vec4 oAlbedo;  // diffuse albedo, for the geometry volume's bounces
 
 void main() {
     // The material as the G-buffer reads it (common/material.glsl): base colour, cut-outs,
@@ -49,6 +50,7 @@ void main() {
     if (dot(n, L) < 0.0) n = -n;  // two-sided, as the raster and the path tracer
     float cosTheta = max(dot(n, L), kLPVMinRSMCosine);
     oFlux = vec4(base.rgb * (1.0 - metallic) * flux, 1.0);
+    oAlbedo = vec4(base.rgb * (1.0 - metallic), 1.0);
     oNormal = vec4(n, 1.0);
     oPosition = vec4(vWorld, area / cosTheta);
 }
