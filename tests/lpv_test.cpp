@@ -159,6 +159,17 @@ TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
                 leakBlocked, litRoom);
     EXPECT_GT(litRoom, 5.0 * leakBlocked);
     EXPECT_LT(leakBlocked, 0.5 * leakOpen) << "the geometry volume should cut the leak at least in half";
+    // With the default settings (issue 13 item 6: the closed room below 5 % of the lit room).
+    FrameSettings d = frameSettings(Preset{}, scene, 96, 64);
+    d.technique = "lpv";
+    d.camera = fs.camera;
+    double litDefault = test::meanIndirect(r, d);
+    d.camera.eye = {1.9f, 1.0f, 0.0f};
+    double leakDefault = test::meanIndirect(r, d);
+    std::printf("with the defaults (%d^3, %d steps, %d bounces): dark room %.5f, lit room %.5f (%.1f %%)\n",
+                d.lpv.gridResolution, d.lpv.propagationSteps, d.lpv.bounces, leakDefault, litDefault,
+                100.0 * leakDefault / litDefault);
+    EXPECT_LT(leakDefault, 0.05 * litDefault) << "the closed room takes more than 5 % of the lit room's indirect light";
 }
 
 
