@@ -134,6 +134,67 @@ TEST(LPVCascades, FitSnapAndNest) {
     for (size_t k = 0; k < boxes.size(); ++k) EXPECT_EQ(moved[k].min, boxes[k].min);
 }
 
+// The sky (issue 13 item 2): an open floor under a constant environment of radiance 1 has
+// E / pi = 1, which technique none's irradiance map gives exactly (times the floor's albedo 0.8);
+// LPV adds the same map times the sky's visibility through the geometry volume, so the open floor
+// gets it all and the same floor inside a closed box gets almost none. The open floor has no light,
+// so all it gathers is sky. The box has a point light inside, whose cube RSM puts the walls in the
+// geometry volume (with no light and a camera looking down, nothing would know the ceiling is
+// there); its sky is what the environment adds to the same frame without it.
+TEST_F(LPVGL, TheSkyLightsWhatTheGeometryVolumeLeavesOpen) {
+    auto frame = [](const Scene& scene, const std::string& technique) {
+        Preset p;
+        p.header.technique.name = technique;
+        p.environment.enabled = true;
+        p.environment.file = "builtin:constant";
+        p.environment.cubeSize = 32;
+        p.environment.samples = 16;
+        FrameSettings fs = frameSettings(p, scene, 32, 32);
+        fs.lights.clear();
+        fs.camera.eye = {0.0f, 0.6f, 0.0f};
+        fs.camera.target = {0.0f, 0.0f, 0.0f};
+        fs.camera.up = {0.0f, 0.0f, -1.0f};
+        fs.camera.fovY = 20.0f;
+        return fs;
+    };
+    Scene open;
+    {
+        MeshBuilder b(open);
+        int floor = b.material("floor", glm::vec3(0.8f), 1.0f);
+        b.quad(floor, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});
+        open.finalize();
+    }
+    Scene closed;
+    {
+        MeshBuilder b(closed);
+        int white = b.material("white", glm::vec3(0.8f), 1.0f);
+        b.box(white, {0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f);
+        closed.finalize();
+    }
+    Renderer r;
+    r.setScene(open);
+    double lpv = test::meanIndirect(r, frame(open, "lpv"));
+    double none = test::meanIndirect(r, frame(open, "none"));
+    r.setScene(closed);
+    FrameSettings box = frame(closed, "lpv");
+    LightSettings bulb;
+    bulb.type = LightType::Point;
+    bulb.position = {0.0f, 0.7f, 0.0f};
+    bulb.intensity = 2.0f;
+    box.lights = {bulb};
+    double withSky = test::meanIndirect(r, box);
+    box.environment.enabled = false;
+    double withoutSky = test::meanIndirect(r, box);
+    double inside = withSky - withoutSky;
+    std::printf("closed box lit by a bulb: %.5f with the sky, %.5f without\n", withSky, withoutSky);
+    EXPECT_GT(withoutSky, 0.0) << "the bulb's light propagates";
+    std::printf("open floor under a constant sky: none %.4f, lpv %.4f (%.1f %%); inside a closed box: lpv %.5f (%.1f %%)\n", none,
+                lpv, 100.0 * lpv / none, inside, 100.0 * inside / none);
+    EXPECT_NEAR(none, 0.8, 0.02) << "the irradiance map of a constant sky of radiance 1";
+    EXPECT_NEAR(lpv / none, 1.0, 0.05) << "nothing stands between the open floor and the sky";
+    EXPECT_LT(inside, 0.05 * none) << "no sky inside a closed box";
+}
+
 TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
     Scene scene = test::twoRooms();
     Preset p;

@@ -67,7 +67,8 @@ std::vector<Member> lpvMembers() {
             GI_MEMBER(T, nudge),
             GI_MEMBER(T, fromGBuffer),   GI_MEMBER(T, stride),         GI_MEMBER(T, pixelAngle),   GI_MEMBER(T, blocking),
             GI_MEMBER(T, occlusionStrength), GI_MEMBER(T, cascadeCount), GI_MEMBER(T, intensity),  GI_MEMBER(T, damping),
-            GI_MEMBER(T, cubeFace)};
+            GI_MEMBER(T, cubeFace),      GI_MEMBER(T, skyIntensity),   GI_MEMBER(T, skyRotation),  GI_MEMBER(T, skyCascade),
+            GI_MEMBER(T, skyMipCount),   GI_MEMBER(T, skySH),          GI_MEMBER(T, skyMipRoughness)};
 }
 
 std::vector<Member> volumeMembers() {

@@ -249,8 +249,8 @@ void Environment::prepare(const EnvironmentSettings& s, gl::GpuTimer& timer, con
         mMips.push_back(info);
         report(m + 1);
     }
-    std::array<glm::vec3, 9> sh = irradianceSH(mImage);
-    for (int i = 0; i < 9; ++i) params.sh[i] = glm::vec4(sh[size_t(i)], 0.0f);
+    mIrradianceSH = irradianceSH(mImage);
+    for (int i = 0; i < 9; ++i) params.sh[i] = glm::vec4(mIrradianceSH[size_t(i)], 0.0f);
     dispatch(mIrradiance, 0, kIrradianceSize, kEnvPrefilterIrradiance, 1.0f, 0.0f, 1, -1);
     glBindSampler(kEnvUnitSource, 0);
     mBuilt = true;
@@ -263,6 +263,7 @@ void Environment::prepare(FrameContext& ctx) {
     if (fs.environment.enabled && fs.environment.intensity > 0.0f && ready()) {
         ctx.sky.prefiltered = mPrefiltered.id();
         ctx.sky.sampler = mCubeLinear.id();
+        ctx.sky.irradianceSH = mIrradianceSH;
         ctx.sky.intensity = fs.environment.intensity;
         ctx.sky.rotation = fs.environment.rotation;
         ctx.sky.mipRoughness.clear();

@@ -32,7 +32,8 @@
 //     not a cosine lobe). Sampling it by cosine on the GPU instead spread the studio map's small
 //     lights across the terminator (dim sides 2-4x too bright against the path tracer).
 //   - The environment lights the scene with technique none, and with the techniques that read
-//     FrameContext::sky (VCT's cones, through their leftover transparency); the others do not
+//     FrameContext::sky (VCT's cones, through their leftover transparency; LPV, through the sky's
+//     visibility in its geometry volume); the others do not
 //     gather it, and with any technique it is still drawn as the sky.
 // Known limits: no shadowing or occlusion of environment light (besides SSAO on the diffuse
 // term); no local probes or parallax correction (as the seed).
@@ -134,6 +135,7 @@ private:
     gl::UniformBlock<shared::EnvParams> mBlock;  // every pass reads it
     gl::Sampler mLinear, mCubeLinear, mPoint;
     gl::Texture mLatLong, mSource, mPrefiltered, mIrradiance, mLUT;
+    std::array<glm::vec3, 9> mIrradianceSH{};  // E / pi of the map, as the irradiance cube is built from
     EnvironmentImage mImage;
     std::vector<MipInfo> mMips;
     double mLoadMs = 0.0;

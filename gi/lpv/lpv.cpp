@@ -95,9 +95,10 @@ LPV::LPV()
       mBounceProg("lpv.bounce", {{GL_COMPUTE_SHADER, "lpv/bounce.comp"}}),
       mResolveProg("lpv.resolve", {{GL_COMPUTE_SHADER, "lpv/resolve.comp"}}),
       mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}),
+      mSkyProg("lpv.sky", {{GL_COMPUTE_SHADER, "lpv/sky.comp"}}),
       mBlock(kLPVBlockName, kLPVBlockBinding) {
     for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
-                           &mBounceProg, &mResolveProg, &mShadeProg})
+                           &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})
         mBlock.requireIn(*p);
     mMaterialBinding.requireIn(mRSMProg);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
@@ -486,8 +487,31 @@ void LPV::shade(const FrameContext& ctx) {
     glBindTextureUnit(kUnitDepth, ctx.depth);
     glBindImageTexture(kLPVImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(gl::groupCount(ctx.width, shared::kGroup2D), gl::groupCount(ctx.height, shared::kGroup2D), 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     for (int unit = kLPVUnitSH; unit < kLPVUnitSH + kLPVSHChannels * kLPVMaxCascades; ++unit) glBindSampler(GLuint(unit), 0);
+    if (ctx.sky.prefiltered == 0) return;
+    // The sky (sky.comp): its irradiance and its prefiltered chain, times its visibility marched
+    // through the coarsest cascade's face transmittances (computed with occlusion on; without it
+    // the sky is unoccluded).
+    mSkyProg.use();
+    p.skyIntensity = ctx.sky.intensity;
+    p.skyRotation = ctx.sky.rotation;
+    p.skyCascade = s.occlusion ? int(mBoxes.size()) - 1 : -1;
+    p.cameraPos = glm::vec4(ctx.settings.camera.eye, 0.0f);
+    for (int i = 0; i < 9; ++i) p.skySH[i] = glm::vec4(ctx.sky.irradianceSH[size_t(i)], 0.0f);
+    p.skyMipCount = std::min(int(ctx.sky.mipRoughness.size()), shared::kSkyMaxMips);
+    for (int m = 0; m < shared::kSkyMaxMips; ++m)
+        p.skyMipRoughness[m / 4][m % 4] = m < p.skyMipCount ? ctx.sky.mipRoughness[size_t(m)] : 1.0f;
+    mBlock.set(p);
+    glBindTextureUnit(kUnitMaterial, ctx.material);
+    glBindTextureUnit(kLPVUnitSky, ctx.sky.prefiltered);
+    glBindSampler(kLPVUnitSky, ctx.sky.sampler);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, mCascadeData.back().transmit.id());
+    glBindImageTexture(kLPVImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glBindImageTexture(kLPVImageSpecular, ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(gl::groupCount(ctx.width, shared::kGroup2D), gl::groupCount(ctx.height, shared::kGroup2D), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindSampler(kLPVUnitSky, 0);
 }
 
 std::vector<DebugView> LPV::debugViews() const {
@@ -587,7 +611,7 @@ std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLight
 bool LPV::reloadShaders(std::string& log) {
     bool ok = true;
     for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
-                           &mBounceProg, &mResolveProg, &mShadeProg})
+                           &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

@@ -45,6 +45,14 @@
 //      front of the surface (its own blocking sits on the corners around it), irradiance
 //      E = dot(L, cosLobe(-N)) with radiance L = kLPVRadianceScale * intensity / cell face area,
 //      written as E / pi.
+//   6. Sky [lpv.shade, sky.comp], when the environment lights the scene (FrameContext::sky): its
+//      irradiance at the normal (the map's 9 SH coefficients) times the sky's visibility is added,
+//      and the prefiltered map along the reflection times the visibility around it is the
+//      indirect specular. Visibility: from the cell in front of the surface, the product of the
+//      coarsest cascade's face transmittances (surfaces facing either way block) along the six
+//      axes, cosine-weighted. Only what an RSM or the camera saw is in the geometry volume, so
+//      only that blocks the sky; six directions are coarse (an overhang open to the side reads
+//      as covered). Sky light does not bounce.
 //
 // Choices where the seed is silent (documented and tested):
 //   - Flux per RSM texel is physical: albedo * light * projected texel area (directional) or
@@ -153,7 +161,7 @@ private:
     };
 
     gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
-        mResolveProg, mShadeProg;
+        mResolveProg, mShadeProg, mSkyProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
     MaterialBinding mMaterialBinding;  // the RSM pass reads it
     std::vector<Cascade> mCascadeData;

@@ -9,6 +9,8 @@ struct LPVSettings {
     static constexpr std::string_view kSection = "lpv";
     // The pass these settings drive, registered by the section list (gi/preset/settings.h).
     static constexpr PassRole kRole = PassRole::Technique;
+    // The environment lights the scene through the sky's visibility in the geometry volume (shade.comp).
+    static constexpr bool kGathersSky = true;
     static std::unique_ptr<Pass> createPass();
     static size_t estimateBytes(const FrameSettings& fs);
     static std::string notes(const FrameSettings& fs);

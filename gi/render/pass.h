@@ -27,6 +27,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <array>
 #include <vector>
 
 namespace gi {
@@ -73,6 +74,7 @@ struct ShadowMapView {
 struct SkyLight {
     GLuint prefiltered = 0;           // cube with the GGX roughness chain (gi/envmap/environment.h)
     GLuint sampler = 0;               // trilinear, seamless, for it
+    std::array<glm::vec3, 9> irradianceSH{};  // E / pi as 9 SH coefficients (common/sky.glsl skyIrradiance)
     float intensity = 0.0f;           // radiance scale
     float rotation = 0.0f;            // degrees about +y
     std::vector<float> mipRoughness;  // perceptual roughness of each mip of the chain

@@ -1,7 +1,16 @@
 // Reading the environment's prefiltered chain (gi/envmap/environment.h), shared by the
 // environment passes and the techniques that gather the sky (FrameContext::sky): the map's
-// rotation about +y, and the mip that holds a perceptual roughness.
+// rotation about +y, the mip that holds a perceptual roughness, and the irradiance (E / pi) from
+// the map's 9 SH coefficients (gi/envmap/envmap_image.h irradianceSH; xyz used).
 #include "common/shared.h"
+
+vec3 skyIrradiance(vec4 sh[9], vec3 N) {
+    float b[9] = float[9](0.282095, 0.488603 * N.y, 0.488603 * N.z, 0.488603 * N.x, 1.092548 * N.x * N.y, 1.092548 * N.y * N.z,
+                          0.315392 * (3.0 * N.z * N.z - 1.0), 1.092548 * N.x * N.z, 0.546274 * (N.x * N.x - N.y * N.y));
+    vec3 e = vec3(0.0);
+    for (int i = 0; i < 9; ++i) e += sh[i].xyz * b[i];
+    return max(e, vec3(0.0));
+}
 
 vec3 envRotateY(vec3 d, float deg) {
     float a = radians(deg), c = cos(a), s = sin(a);

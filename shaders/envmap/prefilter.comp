@@ -28,11 +28,7 @@ void main() {
     if (id.x >= uEnv.size || id.y >= uEnv.size) return;
     vec3 N = cubeDirection(id.z, id.xy, uEnv.size);
     if (uEnv.mode == kEnvPrefilterIrradiance) {
-        float b[9] = float[9](0.282095, 0.488603 * N.y, 0.488603 * N.z, 0.488603 * N.x, 1.092548 * N.x * N.y, 1.092548 * N.y * N.z,
-                              0.315392 * (3.0 * N.z * N.z - 1.0), 1.092548 * N.x * N.z, 0.546274 * (N.x * N.x - N.y * N.y));
-        vec3 e = vec3(0.0);
-        for (int i = 0; i < 9; ++i) e += uEnv.sh[i].xyz * b[i];
-        imageStore(uDest, id, vec4(max(e, vec3(0.0)), 1.0));
+        imageStore(uDest, id, vec4(skyIrradiance(uEnv.sh, N), 1.0));
         return;
     }
     if (uEnv.roughness <= 0.0) {

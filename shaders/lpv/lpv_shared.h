@@ -72,6 +72,9 @@ GI_CONST int kLPVImageSHG = 1;
 GI_CONST int kLPVImageSHB = 2;
 // shade's output.
 GI_CONST int kLPVImageIndirect = 0;
+GI_CONST int kLPVImageSpecular = 1;  // sky: the indirect specular
+// sky: the environment's prefiltered chain (the G-buffer's indirect unit, unused there)
+GI_CONST int kLPVUnitSky = 5;
 
 // Texture units. transmit samples the two geometry volumes.
 GI_CONST int kLPVUnitGeometryRSM = 0;
@@ -116,6 +119,14 @@ struct LPVParams {
     float damping;     // self-illumination damping, 0 .. 1
     // rsm
     int cubeFace;      // 1: a face of a point light's cube RSM (texel solid angles off the face's axis)
+    // sky: the environment (FrameContext::sky) times the sky's visibility through cascade
+    // skyCascade's face transmittances (sky.comp)
+    float skyIntensity;
+    float skyRotation; // degrees about +y
+    int skyCascade;    // -1: no occlusion (the sky is unoccluded)
+    int skyMipCount;   // mips in the prefiltered chain
+    vec4 skySH[9];     // E / pi of the map as 9 SH coefficients (xyz)
+    vec4 skyMipRoughness[kSkyMaxMips / 4];  // the prefiltered chain: roughness of mip m at [m / 4][m % 4]
 };
 
 #ifdef __cplusplus
@@ -123,7 +134,8 @@ inline constexpr const char* kLPVBlockName = "LPVBlock";
 static_assert(offsetof(LPVParams, gridMinCell) == 128 && offsetof(LPVParams, cascadeMinCell) == 160);
 static_assert(offsetof(LPVParams, resolution) == 160 + 16 * kLPVMaxCascades);
 static_assert(offsetof(LPVParams, nudge) == 184 + 16 * kLPVMaxCascades && offsetof(LPVParams, cubeFace) == 220 + 16 * kLPVMaxCascades);
-static_assert(sizeof(LPVParams) == 224 + 16 * kLPVMaxCascades);
+static_assert(offsetof(LPVParams, skyIntensity) == 224 + 16 * kLPVMaxCascades && offsetof(LPVParams, skySH) == 240 + 16 * kLPVMaxCascades);
+static_assert(sizeof(LPVParams) == 240 + 16 * kLPVMaxCascades + 9 * 16 + 4 * kSkyMaxMips);
 }  // namespace gi::shared
 #else
 layout(std140, binding = kLPVBlockBinding) uniform LPVBlock {
