@@ -142,35 +142,8 @@ TEST(LPVCascades, FitSnapAndNest) {
 // geometry volume (with no light and a camera looking down, nothing would know the ceiling is
 // there); its sky is what the environment adds to the same frame without it.
 TEST_F(LPVGL, TheSkyLightsWhatTheGeometryVolumeLeavesOpen) {
-    auto frame = [](const Scene& scene, const std::string& technique) {
-        Preset p;
-        p.header.technique.name = technique;
-        p.environment.enabled = true;
-        p.environment.file = "builtin:constant";
-        p.environment.cubeSize = 32;
-        p.environment.samples = 16;
-        FrameSettings fs = frameSettings(p, scene, 32, 32);
-        fs.lights.clear();
-        fs.camera.eye = {0.0f, 0.6f, 0.0f};
-        fs.camera.target = {0.0f, 0.0f, 0.0f};
-        fs.camera.up = {0.0f, 0.0f, -1.0f};
-        fs.camera.fovY = 20.0f;
-        return fs;
-    };
-    Scene open;
-    {
-        MeshBuilder b(open);
-        int floor = b.material("floor", glm::vec3(0.8f), 1.0f);
-        b.quad(floor, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});
-        open.finalize();
-    }
-    Scene closed;
-    {
-        MeshBuilder b(closed);
-        int white = b.material("white", glm::vec3(0.8f), 1.0f);
-        b.box(white, {0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f);
-        closed.finalize();
-    }
+    auto frame = test::skyFrame;
+    Scene open = test::openFloor(), closed = test::closedBox();
     Renderer r;
     r.setScene(open);
     double lpv = test::meanIndirect(r, frame(open, "lpv"));

@@ -1,6 +1,7 @@
 #include "test_util.h"
 
 #include "gi/gl/debug.h"
+#include "gi/preset/preset.h"
 #include "gi/scene/mesh_builder.h"
 
 #include <array>
@@ -46,6 +47,40 @@ Scene twoRooms() {
     s.lights.push_back(spot);
     s.finalize();
     return s;
+}
+
+Scene openFloor() {
+    Scene s;
+    MeshBuilder b(s);
+    int floor = b.material("floor", glm::vec3(0.8f), 1.0f);
+    b.quad(floor, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});
+    s.finalize();
+    return s;
+}
+
+Scene closedBox() {
+    Scene s;
+    MeshBuilder b(s);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    b.box(white, {0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f);
+    s.finalize();
+    return s;
+}
+
+FrameSettings skyFrame(const Scene& scene, const std::string& technique) {
+    Preset p;
+    p.header.technique.name = technique;
+    p.environment.enabled = true;
+    p.environment.file = "builtin:constant";
+    p.environment.cubeSize = 32;
+    p.environment.samples = 16;
+    FrameSettings fs = frameSettings(p, scene, 32, 32);
+    fs.lights.clear();
+    fs.camera.eye = {0.0f, 0.6f, 0.0f};
+    fs.camera.target = {0.0f, 0.0f, 0.0f};
+    fs.camera.up = {0.0f, 0.0f, -1.0f};
+    fs.camera.fovY = 20.0f;
+    return fs;
 }
 
 double meanIndirect(Renderer& r, const FrameSettings& fs) {
