@@ -19,8 +19,6 @@ layout(std430, binding = kLPVBufferTransmit) readonly buffer Transmit { vec4 tra
 const float kMainFace = 0.12753712;  // 0.4006696846 / pi
 const float kSideFace = 0.13478556;  // 0.4234413544 / pi
 
-const ivec3 kDirections[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0), ivec3(0, 0, 1),
-                                      ivec3(0, 0, -1));
 
 void main() {
     // Read once: llvmpipe reloads a block member at every use inside the neighbour loop.

@@ -21,7 +21,6 @@ layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kLPVUnitSky) uniform samplerCube uSky;  // the prefiltered chain
 layout(binding = kLPVImageIndirect, rgba16f) uniform image2D uIndirect;
 layout(binding = kLPVImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
-const ivec3 kAxes[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0), ivec3(0, 0, 1), ivec3(0, 0, -1));
 layout(std430, binding = kLPVBufferTransmit) readonly buffer Transmit { vec4 transmit[]; };  // 2 per cell: +x -x +y -y, +z -z
 
 // The transmittance of the sky along axis d from cell c, to the cascade's edge. Each face the ray
@@ -32,10 +31,10 @@ float axisVisibility(ivec3 c, int d) {
     const int res = uLPV.resolution;
     int back = d ^ 1;  // the opposite axis: +x <-> -x, +y <-> -y, +z <-> -z
     float v = 1.0;
-    for (ivec3 x = c + kAxes[d]; insideGrid(x, res) && v > 1e-3; x += kAxes[d]) {
+    for (ivec3 x = c + kDirections[d]; insideGrid(x, res) && v > 1e-3; x += kDirections[d]) {
         v *= transmit[cellIndex(x, res) * 2 + d / 4][d % 4];
         // The first face is the receiver's own (its surfels face away from the ray).
-        if (x != c + kAxes[d]) v *= transmit[cellIndex(x - kAxes[d], res) * 2 + back / 4][back % 4];
+        if (x != c + kDirections[d]) v *= transmit[cellIndex(x - kDirections[d], res) * 2 + back / 4][back % 4];
     }
     return v;
 }
@@ -48,7 +47,7 @@ float skyVisibility(vec3 p, vec3 n) {
     if (!insideGrid(c, uLPV.resolution)) return 1.0;
     float sum = 0.0, weight = 0.0;
     for (int d = 0; d < 6; ++d) {
-        float w = dot(n, vec3(kAxes[d]));
+        float w = dot(n, vec3(kDirections[d]));
         if (w <= 0.0) continue;
         sum += w * axisVisibility(c, d);
         weight += w;

@@ -9,8 +9,6 @@ layout(binding = kLPVUnitGeometryRSM) uniform sampler3D uGeometryRSM;
 layout(binding = kLPVUnitGeometryGBuffer) uniform sampler3D uGeometryGBuffer;
 layout(std430, binding = kLPVBufferTransmit) writeonly buffer Transmit { vec4 transmit[]; };  // 2 per cell: +x -x +y -y, +z -z
 
-const ivec3 kDirections[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0), ivec3(0, 0, 1),
-                                      ivec3(0, 0, -1));
 
 // Blocking of light flowing along d by surfels whose summed lobes are gv. The 2-band lobe of area a
 // is a * (0.25 + 0.5 cos): evaluated as it is, it would block 25 % of the light running parallel
