@@ -25,7 +25,50 @@ std::vector<std::string> topLevelKeys() {
     return keys;
 }
 
+// The JSON values of a settings struct's fields, in the table's order.
+template <Settings S>
+std::vector<json> fieldValues(const S& s) {
+    std::vector<json> v;
+    const_cast<S&>(s).visit([&](auto& field, const FieldMeta&) { v.push_back(detail::write(field)); });
+    return v;
+}
+
+// The fields of `s` whose value differs from `base` (fieldValues of the defaults), in the table's order.
+template <Settings S>
+nlohmann::ordered_json changedFields(const S& s, const std::vector<json>& base) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    size_t i = 0;
+    const_cast<S&>(s).visit([&](auto& field, const FieldMeta& m) {
+        json v = detail::write(field);
+        if (i >= base.size() || v != base[i]) j[m.key] = nlohmann::ordered_json::parse(v.dump());
+        ++i;
+    });
+    return j;
+}
+
 }  // namespace
+
+nlohmann::ordered_json presetToSavedJson(const Preset& p) {
+    const Preset defaults;
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    j["schemaVersion"] = Preset::kSchemaVersion;
+    const nlohmann::ordered_json header = changedFields(p.header, fieldValues(defaults.header));
+    for (auto it = header.begin(); it != header.end(); ++it) j[it.key()] = it.value();
+    std::vector<std::vector<json>> sections;
+    const_cast<Preset&>(defaults).forEachSection([&](auto& s) { sections.push_back(fieldValues(s)); });
+    size_t i = 0;
+    const_cast<Preset&>(p).forEachSection([&](auto& s) {
+        nlohmann::ordered_json changed = changedFields(s, sections[i++]);
+        if (!changed.empty()) j[std::string(std::decay_t<decltype(s)>::kSection)] = changed;
+    });
+    if (!p.lightsFromScene) {
+        const std::vector<json> light = fieldValues(LightSettings{});
+        nlohmann::ordered_json lights = nlohmann::ordered_json::array();
+        for (const auto& l : p.lights) lights.push_back(changedFields(l, light));
+        j["lights"] = lights;
+    }
+    return j;
+}
 
 json presetToJson(const Preset& p) {
     json j = toJson(p.header);
@@ -122,7 +165,7 @@ Preset loadPreset(const std::filesystem::path& path) {
 }
 
 void savePreset(const Preset& p, const std::filesystem::path& path) {
-    writeFileAtomic(path, presetToJson(p).dump(2) + "\n");
+    writeFileAtomic(path, presetToSavedJson(p).dump(2) + "\n");
 }
 
 void applySetting(Preset& p, const std::string& assignment) {

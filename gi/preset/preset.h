@@ -69,7 +69,13 @@ struct Preset : FrameSections {
 // presets/default.json, compiled in: what gi-render without input and the editor without files use.
 Preset builtinDefaultPreset();
 
+// Every key of every section (what stats.json and the reference cache record).
 json presetToJson(const Preset& p);
+// What a saved preset file holds: schemaVersion, then only the keys whose value differs from
+// the defaults, in the settings table's order (header, then each section; a section with no
+// change is left out; lights, when the preset names them, each with its changed keys). Floats
+// are written as the shortest text that reads back to the same value. Loading it gives `p` back.
+nlohmann::ordered_json presetToSavedJson(const Preset& p);
 // `context` names the source in error messages (usually the file path).
 Preset presetFromJson(const json& j, const std::string& context);
 // A preset from its JSON text; invalid JSON is an error naming the byte.

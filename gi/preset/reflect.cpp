@@ -1,7 +1,9 @@
 #include "gi/preset/reflect.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
+#include <cstdlib>
 
 namespace gi {
 
@@ -16,6 +18,14 @@ const char* costName(Cost c) {
 }
 
 namespace detail {
+
+double shortestDouble(float f) {
+    char text[32];
+    auto [end, ec] = std::to_chars(text, text + sizeof text - 1, f);  // shortest text that reads back to f
+    if (ec != std::errc()) return double(f);
+    *end = '\0';
+    return std::strtod(text, nullptr);
+}
 
 size_t editDistance(std::string_view a, std::string_view b) {
     std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);

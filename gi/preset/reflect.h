@@ -139,12 +139,19 @@ void read(T& t, const json& j, const FieldMeta&, const std::string& c, const std
     throw Error(where(c, k) + ": unknown value '" + s + "' (valid: " + all + ")");
 }
 
-inline json write(float f) { return f; }
+// A float as the double its shortest decimal text reads back to (3.4f as 3.4, not
+// 3.4000000953674316), so written JSON holds what was typed and still reads back bit-exact.
+double shortestDouble(float f);
+inline json write(float f) { return shortestDouble(f); }
 inline json write(int i) { return i; }
 inline json write(bool b) { return b; }
 inline json write(const std::string& s) { return s; }
-inline json write(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
-inline json write(const std::vector<float>& v) { return json(v); }
+inline json write(const glm::vec3& v) { return json::array({shortestDouble(v.x), shortestDouble(v.y), shortestDouble(v.z)}); }
+inline json write(const std::vector<float>& v) {
+    json j = json::array();
+    for (float f : v) j.push_back(shortestDouble(f));
+    return j;
+}
 template <ReflectedEnum E>
 json write(E e) {
     return enumName(e);
