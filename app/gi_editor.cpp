@@ -4,12 +4,14 @@
 // has all its samples and its scores, so the picture does not depend on the machine's speed.
 #include "gi/gl/debug.h"
 #include "gi/render/image_io.h"
+#include "gi/util/paths.h"
 #include "ui/editor.h"
 #include "ui/window.h"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <sstream>
 #include <cstdio>
 #include <thread>
 
@@ -47,10 +49,25 @@ int run(int argc, char** argv) {
     app.add_option("--reference-timeout", referenceTimeout,
                    "With --screenshot and --reference: seconds to wait for the reference before failing; 0: do not wait")
         ->check(CLI::Range(0.0, 86400.0));
+    std::string scriptFile, uiStats;
+    app.add_option("--script", scriptFile,
+                   "Run the actions in this file, one per line and one per frame (set KEY=VALUE, undo, redo, reset KEY, "
+                   "reset-section NAME, reset-all, save, save-as PATH, open PATH; # comments), then exit")
+        ->check(CLI::ExistingFile);
+    app.add_option("--ui-stats", uiStats,
+                   "At exit, write this JSON file: uiFrameMs (each UI frame), giFrameMs (each frame's renderer call) and "
+                   "editor (title, dirty, errors, status, undo history, the preset as it would be saved)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    }
+    if (!scriptFile.empty()) {
+        std::istringstream lines(gi::readTextFile(scriptFile, size_t(1) << 20));
+        for (std::string line; std::getline(lines, line);) {
+            while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+            if (!line.empty() && line[0] != '#') options.script.push_back(line);
+        }
     }
     options.preset = preset;
     options.coneOverlay = !noCones;
@@ -63,17 +80,22 @@ int run(int argc, char** argv) {
     std::chrono::steady_clock::time_point waitStart;
     bool timedOut = false;
     auto last = std::chrono::steady_clock::now();
+    std::vector<float> uiFrameMs, giFrameMs;
+    int scriptEnd = 0;  // with a script and no --frames: the frame after the last action
     for (int frame = 1; !window.shouldClose(); ++frame) {
         auto now = std::chrono::steady_clock::now();
         float dt = std::chrono::duration<float>(now - last).count();
         last = now;
+        if (frame > 1) uiFrameMs.push_back(dt * 1000.0f);
+        if (!scriptFile.empty() && frames == 0 && scriptEnd == 0 && editor.scriptDone()) scriptEnd = frame + 1;
 
         window.beginFrame();
         int width, height;
         window.framebufferSize(width, height);
         editor.frame(width, height, dt);
+        giFrameMs.push_back(editor.renderMs());
         window.renderUI();
-        bool done = frames > 0 && frame >= frames;
+        bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd);
         if (done && waitForReference && !editor.referenceSettled()) {
             if (frame == frames) waitStart = std::chrono::steady_clock::now();
             double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
@@ -94,6 +116,10 @@ int run(int argc, char** argv) {
         window.swap();
         if (done) break;
         if (editor.title() != title) window.setTitle(title = editor.title());
+    }
+    if (!uiStats.empty()) {
+        gi::json stats = {{"uiFrameMs", uiFrameMs}, {"giFrameMs", giFrameMs}, {"editor", editor.state()}};
+        gi::writeFileAtomic(uiStats, stats.dump(2) + "\n");
     }
     if (timedOut)
         throw gi::Error("the reference did not finish within " + std::to_string(int(referenceTimeout)) +

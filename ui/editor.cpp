@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <type_traits>
 
 namespace fs = std::filesystem;
@@ -24,29 +25,49 @@ Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(
     mScrollToLights = mOpenLights ? 10 : 0;
     fs::path defaultFile = presetDir() / "default.json";
     bool isPreset = true;
-    if (!options.preset.empty()) {
-        mPreset = presetForInput(options.preset, -1);
-        // A glTF input has no preset file yet: Save As suggests one named after it.
-        isPreset = lowercase(options.preset.extension().string()) == ".json";
-        mPresetPath = isPreset ? options.preset : fs::path();
-        mPathField = (isPreset ? options.preset : presetDir() / (options.preset.stem().string() + ".json")).string();
-    } else {
+    // The default preset: default.json, else the built-in one (no files at all).
+    auto loadDefault = [&] {
         if (fs::exists(defaultFile)) {
             mPreset = loadPreset(defaultFile);
             mPresetPath = defaultFile;
         } else {
             mPreset = builtinDefaultPreset();  // no files at all: default.json as compiled in
+            mPresetPath.clear();
         }
         mPathField = defaultFile.string();
+    };
+    std::string openError;
+    try {
+        if (!options.preset.empty()) {
+            mPreset = presetForInput(options.preset, -1);
+            // A glTF input has no preset file yet: Save As suggests one named after it.
+            isPreset = lowercase(options.preset.extension().string()) == ".json";
+            mPresetPath = isPreset ? options.preset : fs::path();
+            mPathField = (isPreset ? options.preset : presetDir() / (options.preset.stem().string() + ".json")).string();
+        } else {
+            loadDefault();
+        }
+        if (options.referenceSPP > 0) mPreset.reference.spp = options.referenceSPP;
+        // A glTF file opens with its own first camera (or one framing it) and its lights.
+        installScene(mPreset, !isPreset);
+    } catch (const std::exception& e) {
+        // A preset that does not load opens the editor anyway, on the default preset, with the
+        // error shown and the path kept in the path field to fix and open again.
+        openError = e.what();
+        isPreset = true;
+        loadDefault();
+        mPathField = options.preset.string();
+        if (options.referenceSPP > 0) mPreset.reference.spp = options.referenceSPP;
+        installScene(mPreset, false);
     }
-    if (options.referenceSPP > 0) mPreset.reference.spp = options.referenceSPP;
     if (!options.reference.empty()) {
         mReference.setView(referenceViewFromName(options.reference));
         mReference.setEnabled(true);
     }
-    // A glTF file opens with its own first camera (or one framing it) and its lights.
-    installScene(mPreset, !isPreset);
     mGoodPreset = mPreset;
+    settle(mPresetPath.empty() ? "opened " + options.preset.filename().string() : "opened " + mPresetPath.filename().string());
+    mPresetError = openError;
+    mScript = options.script;
     mOutputFBO = gl::createFramebuffer();
     const GLubyte* renderer = glGetString(GL_RENDERER);
     mGLRenderer = renderer ? reinterpret_cast<const char*>(renderer) : "unknown";
@@ -68,18 +89,154 @@ void Editor::frame(int width, int height, float dt) {
         camera.sceneCamera = -1;
     }
     float radius = mScene.bounds.valid() ? 0.5f * glm::length(mScene.bounds.extent()) : 1.0f;
-    if (mFlyCamera.update(camera, dt, radius)) {
+    bool cameraMoved = mFlyCamera.update(camera, dt, radius);
+    if (cameraMoved) {
         mPreset.camera = camera;
         apply(uint8_t(Cost::Uniform));
+    }
+    // Undo and redo, unless a text field is taking the keys (it has its own undo).
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.KeyCtrl && !io.WantTextInput && !ImGui::IsAnyItemActive()) {
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z), true)) io.KeyShift ? redo() : undo();
+        else if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), true)) redo();
     }
 
     if (width > 0 && height > 0) renderViewport(width, height);
     drawPanels();
+    recordEdit(cameraMoved);
+    // A script acts from the second frame on, one action per frame, as a user would.
+    if (mFrames++ > 0 && mScriptNext < mScript.size()) {
+        runAction(mScript[mScriptNext++]);
+        recordEdit(false);
+    }
+}
+
+void Editor::recordEdit(bool cameraMoved) {
+    if (!mEditPending || ImGui::IsAnyItemActive() || cameraMoved) return;
+    mEditPending = false;
+    mHistory.record(mPreset);
+    mDirty = !presetDiff(mDiskPreset, mPreset).empty();
+}
+
+void Editor::restore(const Preset& target) {
+    Preset p = target;
+    if (p.header.scene != mLoadedScene || p.folder != mPreset.folder) {
+        try {
+            installScene(p, false);  // the state's own camera and lights, not the scene's
+        } catch (const std::exception& e) {
+            mSceneError = e.what();
+            return;
+        }
+    }
+    mPreset = mGoodPreset = p;
+    mSceneError.clear();
+    mFrameError.clear();
+    ++mLiveGeneration;
+    mDirty = !presetDiff(mDiskPreset, mPreset).empty();
+}
+
+void Editor::undo() {
+    if (mHistory.canUndo()) restore(mHistory.undo());
+}
+
+void Editor::redo() {
+    if (mHistory.canRedo()) restore(mHistory.redo());
+}
+
+void Editor::resetKey(const std::string& key) {
+    auto defaults = flattenPreset(Preset{});
+    auto it = defaults.find(key);
+    if (it == defaults.end()) throw Error("reset: key '" + key + "' is not a setting");
+    applySetting(mPreset, key + "=" + it->second);
+    apply(key == "scene" ? uint8_t(Cost::ReloadScene) : uint8_t(Cost::Uniform));
+}
+
+void Editor::resetSection(const std::string& name) {
+    bool found = false;
+    Preset defaults;
+    mPreset.forEachSection([&](auto& section) {
+        using S = std::decay_t<decltype(section)>;
+        defaults.forEachSection([&](auto& d) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(d)>, S>)
+                if (S::kSection == name) {
+                    section = d;
+                    found = true;
+                }
+        });
+    });
+    if (!found) throw Error("reset: '" + name + "' is not a settings section");
+    apply(uint8_t(Cost::Uniform));
+}
+
+void Editor::resetAll() {
+    Preset defaults;
+    CameraSettings camera = mPreset.camera;
+    Preset p = defaults;
+    p.header = mPreset.header;
+    p.camera = camera;
+    p.lightsFromScene = mPreset.lightsFromScene;
+    p.lights = mPreset.lights;
+    p.folder = mPreset.folder;
+    mPreset = p;
+    apply(uint8_t(Cost::Uniform));
+}
+
+void Editor::settle(const std::string& label) {
+    mDiskPreset = mPreset;
+    mHistory.reset(mPreset, label);
+    mEditPending = false;
+    mDirty = false;
+    mPresetError.clear();
+    mSceneError.clear();
+    mFrameError.clear();
+}
+
+void Editor::runAction(const std::string& action) {
+    auto space = action.find(' ');
+    std::string verb = action.substr(0, space), arg = space == std::string::npos ? "" : action.substr(space + 1);
+    if (verb == "set") {
+        applySetting(mPreset, arg);
+        apply(arg.rfind("scene=", 0) == 0 ? uint8_t(Cost::ReloadScene) : uint8_t(Cost::Uniform));
+    } else if (verb == "undo") {
+        undo();
+    } else if (verb == "redo") {
+        redo();
+    } else if (verb == "reset") {
+        resetKey(arg);
+    } else if (verb == "reset-section") {
+        resetSection(arg);
+    } else if (verb == "reset-all") {
+        resetAll();
+    } else if (verb == "save") {
+        savePresetAs(mPresetPath.empty() ? fs::path(mPathField) : mPresetPath);
+    } else if (verb == "save-as") {
+        savePresetAs(arg);
+    } else if (verb == "open") {
+        openPreset(arg);
+    } else {
+        throw Error("script: unknown action '" + action + "'");
+    }
+}
+
+json Editor::state() const {
+    json history = json::array();
+    for (size_t i = 0; i < mHistory.size(); ++i) history.push_back(mHistory.label(i));
+    json errors = json::array();
+    for (const std::string* e : {&mPresetError, &mSceneError, &mFrameError})
+        if (!e->empty()) errors.push_back(*e);
+    return {{"title", title()},
+            {"file", mPresetPath.string()},
+            {"dirty", mDirty},
+            {"errors", errors},
+            {"status", mPresetStatus},
+            {"history", history},
+            {"historyIndex", mHistory.index()},
+            {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
 }
 
 void Editor::apply(uint8_t cost) {
     if (!cost) return;
-    mDirty = true;
+    mEditPending = true;
     ++mLiveGeneration;
     if (cost & uint8_t(Cost::ReloadScene)) {
         Preset p = mPreset;
@@ -87,6 +244,7 @@ void Editor::apply(uint8_t cost) {
             installScene(p, true);
             mPreset = mGoodPreset = p;
             mSceneError.clear();
+            mFrameError.clear();
         } catch (const std::exception& e) {
             mSceneError = e.what();
             mPreset.header.scene = mLoadedScene;
@@ -120,7 +278,9 @@ void Editor::renderViewport(int width, int height) {
     FrameSettings fs;
     try {
         fs = frameSettings(mPreset, mScene, width, height);
+        auto start = std::chrono::steady_clock::now();
         mRenderer.render(fs);
+        mRenderMs = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
         mGoodPreset = mPreset;
     } catch (const std::exception& e) {
         // Keep the last picture and go back to the settings that made it. The message stays
@@ -153,22 +313,29 @@ void Editor::openPreset(const fs::path& path) {
         mPreset = mGoodPreset = p;
         mPresetPath = path;
         mPathField = path.string();
-        mDirty = false;
-        mPresetError.clear();
-        mSceneError.clear();
-        mFrameError.clear();
+        settle("opened " + path.filename().string());
         mPresetStatus = "opened " + path.string();
     } catch (const std::exception& e) {
         mPresetError = e.what();
     }
 }
 
+namespace {
+// A file in the presets folder the project ships (presetDir()).
+bool isShippedPreset(const fs::path& path) {
+    std::error_code ec;
+    return fs::exists(path, ec) && fs::equivalent(path.parent_path().empty() ? fs::path(".") : path.parent_path(), presetDir(), ec);
+}
+}  // namespace
+
 void Editor::savePresetAs(const fs::path& path) {
-    // Never replace another file silently: the first press warns, the second writes.
-    if (path != mPresetPath && fs::exists(path) && mConfirmOverwrite != path) {
+    // Never replace another file silently, nor a shipped preset: the first press warns, the second writes.
+    bool shipped = isShippedPreset(path);
+    if (((path != mPresetPath && fs::exists(path)) || shipped) && mConfirmOverwrite != path) {
         mConfirmOverwrite = path;
         mPresetError.clear();
-        mPresetStatus = path.filename().string() + " exists: press again to replace it";
+        mPresetStatus = shipped ? path.filename().string() + " is a shipped preset: press Save again to change it, or Save As another file"
+                                : path.filename().string() + " exists: press again to replace it";
         return;
     }
     mConfirmOverwrite.clear();
@@ -176,6 +343,7 @@ void Editor::savePresetAs(const fs::path& path) {
         savePreset(mPreset, path);  // atomic: the old file stays whole until the new one is complete
         mPresetPath = path;
         mPathField = path.string();
+        mDiskPreset = mPreset;
         mDirty = false;
         mPresetError.clear();
         mPresetStatus = "saved " + path.string();
@@ -241,6 +409,8 @@ void Editor::drawPanels() {
         }
         if (lightsOpen) cost |= lightsPanel();
         // Every fixed section the preset has, so a new technique's settings appear by themselves.
+        static const std::map<std::string, std::string> defaults = flattenPreset(Preset{});
+        const std::map<std::string, std::string> disk = flattenPreset(mDiskPreset), current = flattenPreset(mPreset);
         mPreset.forEachSection([&](auto& section) {
             using S = std::decay_t<decltype(section)>;
             // The active technique's settings are what is being tuned: open them too.
@@ -248,7 +418,19 @@ void Editor::drawPanels() {
             bool open = S::kSection == "render" || S::kSection == "toneMap" || mPreset.header.technique == S::kSection ||
                         (own && own->openAtStart());
             if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
-            cost |= drawSettings(section);
+            const std::string prefix = std::string(S::kSection) + ".";
+            bool offDefault = false;
+            for (auto it = defaults.lower_bound(prefix); !offDefault && it != defaults.end() && it->first.rfind(prefix, 0) == 0; ++it) {
+                auto now = current.find(it->first);
+                offDefault = now != current.end() && now->second != it->second;
+            }
+            if (offDefault) {
+                ImGui::PushID(S::kSection.data());
+                if (ImGui::SmallButton("Reset section")) resetSection(std::string(S::kSection));
+                ImGui::PopID();
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("every %s setting to its default (undo brings them back)", S::kSection.data());
+            }
+            cost |= drawSettings(section, FieldBaselines{prefix, &defaults, mPresetPath.empty() ? nullptr : &disk});
             if constexpr (std::is_same_v<S, CameraSettings>) cost |= cameraTools();
             passExtras(S::kSection, frame, previewers);
             if (own) cost |= own->drawSection(ctx);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "gi/gl/handle.h"
+#include "gi/preset/history.h"
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/scene.h"
@@ -35,6 +36,9 @@ struct EditorOptions {
     bool phasePlot = false;        // the Phase function window open from the start (it also opens when volumetric is on)
     bool roughnessMips = false;    // the environment section's Roughness mips panel open, and scrolled to, from the start
     bool lightsPanel = false;      // the lights section open with every light expanded, and scrolled to, from the start
+    // Actions run one per frame after the first frame, as a user would do them (Editor::runAction):
+    // tests drive the editor with these under Xvfb.
+    std::vector<std::string> script;
 };
 
 class Editor {
@@ -56,13 +60,29 @@ public:
     std::string referenceError() const { return mReference.error(); }
     std::string referenceSummary() const { return mReference.summary(); }
 
+    // One scripted action, through the same functions the panels and shortcuts call:
+    //   set KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH | open PATH
+    // Throws gi::Error for an unknown action.
+    void runAction(const std::string& action);
+    bool scriptDone() const { return mScriptNext >= mScript.size(); }
+    // Wall time of the last frame's renderer call (the GI work, which today runs in the UI frame).
+    float renderMs() const { return mRenderMs; }
+    // What a test reads back: title, file, dirty, the errors and status shown, the undo history
+    // (labels and position) and the preset as it would be saved.
+    json state() const;
 private:
     Preset mPreset;
     Preset mGoodPreset;                 // the last preset that rendered; restored when a frame fails
     std::filesystem::path mPresetPath;  // the file Save writes; empty for an unsaved preset
     std::string mPathField;             // the Presets panel's path (Open, Save As)
     std::filesystem::path mConfirmOverwrite;  // Save As target the user was warned exists
-    bool mDirty = false;
+    bool mDirty = false;                // the preset differs from mDiskPreset
+    Preset mDiskPreset;                 // the preset as the file holds it (as opened or last saved)
+    PresetHistory mHistory;             // undo/redo: one state per completed edit
+    bool mEditPending = false;          // an edit is under way: recorded once no widget is active
+    std::vector<std::string> mScript;
+    size_t mScriptNext = 0;
+    uint64_t mFrames = 0;
     // Previewers of the active passes (Renderer::previewers): which are shown (overlays over
     // the viewport, images in windows), by name; overlays start shown.
     std::map<std::string, bool> mShowPreviewer;
@@ -90,6 +110,7 @@ private:
     gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
+    float mRenderMs = 0.0f;
     std::string mGLRenderer;
     std::vector<std::string> mSceneFiles;  // glTF files in the asset search path, as search-path names
     std::vector<std::filesystem::path> mPresetFiles;
@@ -99,6 +120,20 @@ private:
     int mScrollToLights = 0;   // frames left to keep the lights section at the top (the layout settles)
 
     void apply(uint8_t cost);
+    // Records the preset in the history once an edit is complete (no widget active, the camera
+    // still), and updates mDirty.
+    void recordEdit(bool cameraMoved);
+    // Undo, redo and history jumps: the preset becomes `p` (its scene reloaded if it differs,
+    // keeping p's camera and lights).
+    void restore(const Preset& p);
+    void undo();
+    void redo();
+    void resetKey(const std::string& key);        // one setting to its default
+    void resetSection(const std::string& name);   // every key of a section
+    void resetAll();                              // every section but the camera; scene, technique and lights stay
+    // A successful load or save: the file's state, a fresh history, no stale errors.
+    void settle(const std::string& label);
+    void historyPanel();
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
     // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
     void installScene(Preset& p, bool resetView);

@@ -40,6 +40,32 @@ constexpr ImGuiSliderFlags kDragFlags = ImGuiSliderFlags_AlwaysClamp | ImGuiSlid
 
 }  // namespace
 
+void fieldMarkers(bool differsFromDefault, bool differsFromDisk) {
+    if (!differsFromDefault && !differsFromDisk) return;
+    ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    // In the window's left padding, which the content clip rectangle leaves out.
+    ImVec2 wp = ImGui::GetWindowPos();
+    draw->PushClipRect(wp, ImVec2(wp.x + ImGui::GetWindowWidth(), wp.y + ImGui::GetWindowHeight()), false);
+    float y = 0.5f * (lo.y + hi.y);
+    if (differsFromDefault) draw->AddCircleFilled(ImVec2(lo.x - 5.0f, y), 3.0f, IM_COL32(90, 160, 255, 255));
+    if (differsFromDisk) draw->AddRectFilled(ImVec2(lo.x - 1.5f, lo.y), ImVec2(lo.x + 0.5f, hi.y), IM_COL32(255, 150, 40, 255));
+    draw->PopClipRect();
+    if (ImGui::IsItemHovered() && ImGui::GetIO().KeyAlt)
+        ImGui::SetTooltip("%s%s%s", differsFromDefault ? "differs from the default" : "", differsFromDefault && differsFromDisk ? "; " : "",
+                          differsFromDisk ? "not saved: differs from the file" : "");
+}
+
+std::string resetMenu(const char* id, const std::string* defaultValue, const std::string* diskValue, bool differsFromDefault,
+                      bool differsFromDisk) {
+    std::string chosen;
+    if (!ImGui::BeginPopupContextItem(id)) return chosen;
+    if (defaultValue && ImGui::MenuItem("Reset to default", defaultValue->c_str(), false, differsFromDefault)) chosen = *defaultValue;
+    if (diskValue && ImGui::MenuItem("Revert to the file", diskValue->c_str(), false, differsFromDisk)) chosen = *diskValue;
+    ImGui::EndPopup();
+    return chosen;
+}
+
 void fieldTooltip(const FieldMeta& m, bool showRange) {
     if (!ImGui::IsItemHovered()) return;
     ImGui::BeginTooltip();

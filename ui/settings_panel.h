@@ -2,8 +2,10 @@
 // visit() list and draws the widget each field type calls for, so no panel holds per-field code.
 #pragma once
 
+#include "gi/preset/reflect.h"
 #include "gi/preset/settings.h"
 
+#include <map>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -61,10 +63,32 @@ bool drawField(T& value, const FieldMeta& m) {
     return changed;
 }
 
+// What drawSettings compares each field with, by full key (prefix + key, as --list-settings
+// names it) to the JSON text of the value (gi/preset/history.h flattenPreset): the defaults and
+// the file on disk. A value that differs gets a marker beside it, and its right-click menu resets
+// it to the default or reverts it to the file. A null map draws no such marker.
+struct FieldBaselines {
+    std::string prefix;  // "vct.", "" for the header, "lights.0."
+    const std::map<std::string, std::string>* defaults = nullptr;
+    const std::map<std::string, std::string>* disk = nullptr;
+};
+
+// Markers left of the last item: a blue dot where the value differs from the default, an
+// orange bar where it differs from the file on disk (an unsaved change).
+void fieldMarkers(bool differsFromDefault, bool differsFromDisk);
+// The right-click menu of the last item; returns the JSON text of the value chosen, or "".
+std::string resetMenu(const char* id, const std::string* defaultValue, const std::string* diskValue, bool differsFromDefault,
+                      bool differsFromDisk);
+
 // Draws every field of `s` and returns the OR of the Cost bits of the fields that changed.
 template <Settings S>
-uint8_t drawSettings(S& s) {
+uint8_t drawSettings(S& s, const FieldBaselines& baselines = {}) {
     uint8_t cost = 0;
+    auto lookup = [](const std::map<std::string, std::string>* m, const std::string& key) -> const std::string* {
+        if (!m) return nullptr;
+        auto it = m->find(key);
+        return it == m->end() ? nullptr : &it->second;
+    };
     // Sections share key names (a light's and the camera's "color", "near"...): scope the IDs.
     ImGui::PushID(S::kSection.data(), S::kSection.data() + S::kSection.size());
     s.visit([&](auto& field, const FieldMeta& m) {
@@ -72,6 +96,15 @@ uint8_t drawSettings(S& s) {
         if constexpr (HasReadOnlyFields<S>) readOnly = s.readOnly(m.key);
         if (!readOnly) {
             if (drawField(field, m)) cost |= uint8_t(m.cost);
+            const std::string key = baselines.prefix + m.key;
+            const std::string* def = lookup(baselines.defaults, key);
+            const std::string* disk = lookup(baselines.disk, key);
+            if (!def && !disk) return;
+            const std::string now = gi::detail::write(field).dump();
+            bool offDefault = def && *def != now, offDisk = disk && *disk != now;
+            fieldMarkers(offDefault, offDisk);
+            std::string chosen = resetMenu(m.key, def, disk, offDefault, offDisk);
+            if (!chosen.empty() && setField(s, m.key, chosen, key)) cost |= uint8_t(m.cost);
             return;
         }
         // Shown with its value, disabled; a copy, so not even a clamp can write to it.

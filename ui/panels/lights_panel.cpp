@@ -2,6 +2,7 @@
 // generated fields.
 #include "ui/editor.h"
 
+#include "gi/preset/history.h"
 #include "gi/scene/emitters.h"
 
 #include "ui/panel_util.h"
@@ -58,7 +59,11 @@ uint8_t Editor::lightsPanel() {
         if (area) lights[i] = placeAreaLight(lights[i], mScene.emitters[size_t(l.emitter)]);
         if (mOpenLights) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
         if (ImGui::TreeNodeEx("light", area ? 0 : ImGuiTreeNodeFlags_DefaultOpen, "%s", title.c_str())) {
-            cost |= drawSettings(lights[i]);
+            static const std::map<std::string, std::string> defaults = lightValues(LightSettings{});
+            std::map<std::string, std::string> disk;
+            bool onDisk = !mPresetPath.empty() && !mDiskPreset.lightsFromScene && i < mDiskPreset.lights.size();
+            if (onDisk) disk = lightValues(mDiskPreset.lights[i]);
+            cost |= drawSettings(lights[i], FieldBaselines{"", &defaults, onDisk ? &disk : nullptr});
             if (ImGui::SmallButton("Remove light")) removed = int(i);
             ImGui::TreePop();
         }

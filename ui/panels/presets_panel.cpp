@@ -37,10 +37,39 @@ void Editor::presetsPanel() {
         ++mLiveGeneration;
         if (mShaderLog.empty()) mPresetStatus = "shaders reloaded";
     }
+    ImGui::BeginDisabled(!mHistory.canUndo());
+    if (ImGui::Button("Undo")) undo();
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!mHistory.canRedo());
+    if (ImGui::Button("Redo")) redo();
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Reset settings")) resetAll();
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("every section's settings to their defaults; the scene, technique, camera and lights stay (undo brings them back)");
+    hintText("Ctrl+Z undo, Ctrl+Shift+Z redo; right-click a value to reset it (blue dot: not the default, orange bar: not saved)");
+    if (ImGui::TreeNode("history", "history (%zu of %zu)", mHistory.index() + 1, mHistory.size())) {
+        historyPanel();
+        ImGui::TreePop();
+    }
     if (!mPresetError.empty()) wrappedText(kErrorColor, mPresetError);
     else if (!mConfirmOverwrite.empty()) wrappedText(kWarningColor, mPresetStatus);
     else if (!mPresetStatus.empty()) hintText(mPresetStatus);
     if (!mShaderLog.empty()) wrappedText(kErrorColor, mShaderLog);
+}
+
+void Editor::historyPanel() {
+    // Newest first; clicking a state goes back (or forward) to it, as that many undos would.
+    if (!ImGui::BeginListBox("##history", ImVec2(-FLT_MIN, 6.25f * ImGui::GetTextLineHeightWithSpacing()))) return;
+    for (size_t k = mHistory.size(); k-- > 0;) {
+        ImGui::PushID(int(k));
+        bool here = k == mHistory.index();
+        if (ImGui::Selectable(mHistory.label(k).c_str(), here) && !here) restore(mHistory.jump(k));
+        if (k > mHistory.index() && ImGui::IsItemHovered()) ImGui::SetTooltip("undone: click to redo up to here");
+        ImGui::PopID();
+    }
+    ImGui::EndListBox();
 }
 
 }  // namespace gi::ui
