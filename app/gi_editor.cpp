@@ -50,6 +50,10 @@ int run(int argc, char** argv) {
                    "With --screenshot and --reference: seconds to wait for the reference before failing; 0: do not wait")
         ->check(CLI::Range(0.0, 86400.0));
     std::string scriptFile, uiStats;
+    int frameDelayMs = 0;
+    app.add_option("--frame-delay-ms", frameDelayMs,
+                   "Sleep this long in every frame, as slow GI would take it (tests of input at low frame rates)")
+        ->check(CLI::Range(0, 60000));
     app.add_option("--script", scriptFile,
                    "Run the actions in this file, one per line and one per frame (set KEY=VALUE, undo, redo, reset KEY, "
                    "reset-section NAME, reset-all, save, save-as PATH, open PATH; # comments), then exit")
@@ -94,6 +98,7 @@ int run(int argc, char** argv) {
         window.framebufferSize(width, height);
         editor.frame(width, height, dt);
         giFrameMs.push_back(editor.renderMs());
+        if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(frameDelayMs));
         window.renderUI();
         bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd);
         if (done && waitForReference && !editor.referenceSettled()) {

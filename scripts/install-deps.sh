@@ -9,7 +9,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libepoxy-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtbb-dev libeigen3-dev
-  xvfb xauth assimp-testmodels
+  xvfb xauth xdotool assimp-testmodels
   clang libclang-rt-dev
 )
 

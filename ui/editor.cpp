@@ -229,6 +229,7 @@ json Editor::state() const {
             {"dirty", mDirty},
             {"errors", errors},
             {"status", mPresetStatus},
+            {"pathField", mPathField},
             {"history", history},
             {"historyIndex", mHistory.index()},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};

@@ -67,7 +67,7 @@ public:
     bool scriptDone() const { return mScriptNext >= mScript.size(); }
     // Wall time of the last frame's renderer call (the GI work, which today runs in the UI frame).
     float renderMs() const { return mRenderMs; }
-    // What a test reads back: title, file, dirty, the errors and status shown, the undo history
+    // What a test reads back: title, file, dirty, the errors and status shown, the path field, the undo history
     // (labels and position) and the preset as it would be saved.
     json state() const;
 private:

@@ -1,5 +1,7 @@
 #include "ui/window.h"
 
+#include "ui/input_queue.h"
+
 #include "gi/gl/debug.h"
 
 // libepoxy must come before GLFW, which is told (GLFW_INCLUDE_NONE) not to pull in a GL header.
@@ -11,7 +13,7 @@
 
 namespace gi::ui {
 
-Window::Window(int width, int height, const char* title) {
+Window::Window(int width, int height, const char* title) : mKeys(std::make_unique<KeyEventQueue>()) {
     if (!glfwInit())
         throw NoDisplayError("no display available (set DISPLAY or use gi-render for headless rendering)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
@@ -36,7 +38,19 @@ Window::Window(int width, int height, const char* title) {
     // No imgui.ini: the layout is the same on every start, so screenshots are reproducible.
     ImGui::GetIO().IniFilename = nullptr;
     ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForOpenGL(mWindow, true);
+    // The backend's callbacks, except the key and character ones, which go through mKeys (ui/input_queue.h).
+    ImGui_ImplGlfw_InitForOpenGL(mWindow, false);
+    glfwSetWindowUserPointer(mWindow, this);
+    glfwSetWindowFocusCallback(mWindow, ImGui_ImplGlfw_WindowFocusCallback);
+    glfwSetCursorEnterCallback(mWindow, ImGui_ImplGlfw_CursorEnterCallback);
+    glfwSetMouseButtonCallback(mWindow, ImGui_ImplGlfw_MouseButtonCallback);
+    glfwSetScrollCallback(mWindow, ImGui_ImplGlfw_ScrollCallback);
+    glfwSetCharCallback(mWindow, [](GLFWwindow* w, unsigned int c) {
+        if (c != 0) static_cast<Window*>(glfwGetWindowUserPointer(w))->mKeys->push({0, 0, 0, 0, c});
+    });
+    glfwSetKeyCallback(mWindow, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
+        static_cast<Window*>(glfwGetWindowUserPointer(w))->mKeys->push({key, scancode, action, mods});
+    });
     ImGui_ImplOpenGL3_Init("#version 450");
 }
 
@@ -52,6 +66,11 @@ bool Window::shouldClose() const { return glfwWindowShouldClose(mWindow); }
 
 void Window::beginFrame() {
     glfwPollEvents();
+    // At most one press or release per key this frame; the rest wait for the next frames.
+    mKeys->drain([&](const KeyEvent& e) {
+        if (e.codepoint != 0) ImGui_ImplGlfw_CharCallback(mWindow, e.codepoint);
+        else ImGui_ImplGlfw_KeyCallback(mWindow, e.key, e.scancode, e.action, e.mods);
+    });
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();

@@ -5,12 +5,15 @@
 #include "gi/util/error.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 struct GLFWwindow;
 
 namespace gi::ui {
+
+class KeyEventQueue;
 
 // No window could be opened (no X display, or no GL 4.5): the caller exits with its own code.
 class NoDisplayError : public Error {
@@ -40,6 +43,7 @@ public:
 
 private:
     GLFWwindow* mWindow = nullptr;
+    std::unique_ptr<KeyEventQueue> mKeys;  // GLFW's key events, handed to ImGui one change per key per frame
 };
 
 }  // namespace gi::ui
