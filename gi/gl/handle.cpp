@@ -9,6 +9,15 @@ void checkFramebuffer(GLuint fbo, const char* what) {
     GI_ASSERT(status == GL_FRAMEBUFFER_COMPLETE, what);
 }
 
+void unbindTextureUnits() {
+    static const GLint units = [] {
+        GLint n = 0;
+        glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &n);
+        return n;
+    }();
+    glBindTextures(0, units, nullptr);
+}
+
 size_t bytesPerTexel(GLenum f) {
     switch (f) {
         case GL_R8: return 1;

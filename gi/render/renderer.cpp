@@ -229,6 +229,7 @@ void Renderer::runStage(FrameContext& ctx, F&& stage) {
             if (p.info) ctx.changes |= p.info->changes(before, fs);
         }
         stage(*p.pass, ctx);
+        gl::unbindTextureUnits();
     }
 }
 
@@ -269,6 +270,7 @@ void Renderer::render(const FrameSettings& fs) {
                      mProgress};
     ctx.ambientOcclusion = mWhite.id();
 
+    gl::unbindTextureUnits();
     mTimer.beginFrame();
     runStage(ctx, [](Pass& p, FrameContext& c) { p.prepare(c); });
     renderShadows(fs);
