@@ -51,15 +51,20 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(0.0, 86400.0));
     std::string scriptFile, uiStats;
     int frameDelayMs = 0;
+    double seconds = 0.0;
+    app.add_option("--seconds", seconds, "Run this many seconds, then exit (with --script: at least until its last action)")
+        ->check(CLI::Range(0.0, 86400.0));
     app.add_option("--frame-delay-ms", frameDelayMs,
                    "Sleep this long in every frame, as slow GI would take it (tests of input at low frame rates)")
         ->check(CLI::Range(0, 60000));
     app.add_option("--script", scriptFile,
                    "Run the actions in this file, one per line and one per frame (set KEY=VALUE, undo, redo, reset KEY, "
-                   "reset-section NAME, reset-all, save, save-as PATH, open PATH; # comments), then exit")
+                   "reset-section NAME, reset-all, save, save-as PATH, open PATH, drag KEY=VALUE (mid-drag: the next frame previews), "
+                   "pause, resume, wait; # comments), then exit")
         ->check(CLI::ExistingFile);
     app.add_option("--ui-stats", uiStats,
-                   "At exit, write this JSON file: uiFrameMs (each UI frame), giFrameMs (each frame's renderer call) and "
+                   "At exit, write this JSON file: uiFrameMs (each UI frame), giFrameMs (each GI frame the renderer made), giFrames "
+                   "(each GI frame's ms, width, height and the UI frame it was made in) and "
                    "editor (title, dirty, errors, status, undo history, the preset as it would be saved)");
     try {
         app.parse(argc, argv);
@@ -85,6 +90,9 @@ int run(int argc, char** argv) {
     bool timedOut = false;
     auto last = std::chrono::steady_clock::now();
     std::vector<float> uiFrameMs, giFrameMs;
+    gi::json giFrames = gi::json::array();
+    const auto start = std::chrono::steady_clock::now();
+    int settleFrames = 0;  // frames waited, at the end, for the GI to catch up
     int scriptEnd = 0;  // with a script and no --frames: the frame after the last action
     for (int frame = 1; !window.shouldClose(); ++frame) {
         auto now = std::chrono::steady_clock::now();
@@ -97,10 +105,20 @@ int run(int argc, char** argv) {
         int width, height;
         window.framebufferSize(width, height);
         editor.frame(width, height, dt);
-        giFrameMs.push_back(editor.renderMs());
+        if (auto gi = editor.renderedFrame()) {
+            giFrameMs.push_back(gi->ms);
+            giFrames.push_back({{"ms", gi->ms}, {"width", gi->width}, {"height", gi->height}, {"uiFrame", frame}});
+        }
         if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(frameDelayMs));
         window.renderUI();
-        bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd);
+        bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd && seconds == 0.0);
+        if (seconds > 0.0 && std::chrono::duration<double>(now - start).count() >= seconds && (scriptFile.empty() || scriptEnd > 0))
+            done = true;
+        // A screenshot shows the full frame of the final settings, not a drag's preview.
+        if (done && !screenshot.empty() && !editor.giSettled() && ++settleFrames < 100) {
+            window.swap();
+            continue;
+        }
         if (done && waitForReference && !editor.referenceSettled()) {
             if (frame == frames) waitStart = std::chrono::steady_clock::now();
             double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
@@ -123,7 +141,7 @@ int run(int argc, char** argv) {
         if (editor.title() != title) window.setTitle(title = editor.title());
     }
     if (!uiStats.empty()) {
-        gi::json stats = {{"uiFrameMs", uiFrameMs}, {"giFrameMs", giFrameMs}, {"editor", editor.state()}};
+        gi::json stats = {{"uiFrameMs", uiFrameMs}, {"giFrameMs", giFrameMs}, {"giFrames", giFrames}, {"editor", editor.state()}};
         gi::writeFileAtomic(uiStats, stats.dump(2) + "\n");
     }
     if (timedOut)

@@ -5,13 +5,14 @@
 # last character. Usage: editor_keys.sh EDITOR PRESET STATS
 set -u
 editor=$1 preset=$2 stats=$3
-# 640x480 keeps frames near 1.5 s on llvmpipe; the left panel's layout does not depend on the size.
-"$editor" --preset "$preset" --frames 16 --frame-delay-ms 1000 --ui-stats "$stats" --width 640 --height 480 &
+# The GI renders once (nothing changes), so the frames are the 1 s delay; 24 of them outlast the
+# taps. The left panel's layout does not depend on the size.
+"$editor" --preset "$preset" --frames 24 --frame-delay-ms 1000 --ui-stats "$stats" --width 640 --height 480 &
 pid=$!
 xdotool search --sync --onlyvisible --name "GI Workbench" > /dev/null
 sleep 6
 xdotool mousemove 110 287 click 1   # the path field (fixed layout: no imgui.ini)
-sleep 8                              # at least two frames: the field is active before the keys come
+sleep 4                              # at least two frames: the field is active before the keys come
 xdotool key End
 sleep 0.2
 xdotool type Q

@@ -101,7 +101,12 @@ void Editor::frame(int width, int height, float dt) {
         else if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y), true)) redo();
     }
 
-    if (width > 0 && height > 0) renderViewport(width, height);
+    // P pauses and resumes the GI work, unless a text field takes the keys.
+    if (!io.WantTextInput && !io.KeyCtrl && ImGui::IsKeyPressed('P', false))  // GLFW_KEY_P: 1.86 indexes keys by GLFW code
+        mPaused = !mPaused;
+
+    mRendered.reset();
+    if (width > 0 && height > 0) renderViewport(width, height, mInteracting || cameraMoved);
     drawPanels();
     recordEdit(cameraMoved);
     // A script acts from the second frame on, one action per frame, as a user would.
@@ -109,6 +114,9 @@ void Editor::frame(int width, int height, float dt) {
         runAction(mScript[mScriptNext++]);
         recordEdit(false);
     }
+    // The next frame renders a preview while this interaction goes on.
+    mInteracting = ImGui::IsAnyItemActive() || cameraMoved || mScriptDrag;
+    mScriptDrag = false;
 }
 
 void Editor::recordEdit(bool cameraMoved) {
@@ -194,9 +202,14 @@ void Editor::settle(const std::string& label) {
 void Editor::runAction(const std::string& action) {
     auto space = action.find(' ');
     std::string verb = action.substr(0, space), arg = space == std::string::npos ? "" : action.substr(space + 1);
-    if (verb == "set") {
+    if (verb == "set" || verb == "drag") {
         applySetting(mPreset, arg);
         apply(arg.rfind("scene=", 0) == 0 ? uint8_t(Cost::ReloadScene) : uint8_t(Cost::Uniform));
+        mScriptDrag = verb == "drag";
+    } else if (verb == "wait") {
+        // Nothing: a frame as a user who is looking at the picture.
+    } else if (verb == "pause" || verb == "resume") {
+        mPaused = verb == "pause";
     } else if (verb == "undo") {
         undo();
     } else if (verb == "redo") {
@@ -232,6 +245,8 @@ json Editor::state() const {
             {"pathField", mPathField},
             {"history", history},
             {"historyIndex", mHistory.index()},
+            {"paused", mPaused},
+            {"giSettled", giSettled()},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
 }
 
@@ -273,16 +288,38 @@ void Editor::installScene(Preset& p, bool resetView) {
     ++mLiveGeneration;
 }
 
-void Editor::renderViewport(int width, int height) {
+std::string Editor::liveKey(int width, int height) const {
+    return std::to_string(mLiveGeneration) + " " + std::to_string(mSceneGeneration) + " " + std::to_string(width) + "x" +
+           std::to_string(height) + " " + (mPreset.lightsFromScene ? "scene lights " : "") + mPreset.folder.string() + " " +
+           presetToJson(mPreset).dump();
+}
+
+void Editor::renderViewport(int width, int height, bool interacting) {
     mWidth = width;
     mHeight = height;
     FrameSettings fs;
     try {
+        // The panels and the reference see the full-size frame, whatever size the preview renders at.
         fs = frameSettings(mPreset, mScene, width, height);
-        auto start = std::chrono::steady_clock::now();
-        mRenderer.render(fs);
-        mRenderMs = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
-        mGoodPreset = mPreset;
+        mLiveKey = liveKey(width, height);
+        // While a drag or a flight goes on, a smaller frame keeps the picture moving; the full
+        // frame follows when it ends. Nothing renders when nothing the image depends on changed.
+        const int divisor = interacting ? std::max(mPreviewDivisor, 1) : 1;
+        const int w = std::max(width / divisor, 1), h = std::max(height / divisor, 1);
+        const std::string key = divisor == 1 ? mLiveKey : liveKey(w, h);
+        if (!mPaused && key != mRenderedKey) {
+            const FrameSettings renderFS = divisor == 1 ? fs : frameSettings(mPreset, mScene, w, h);
+            auto start = std::chrono::steady_clock::now();
+            mRenderedKey.clear();  // a frame that throws leaves no image of these settings
+            mRenderer.render(renderFS);
+            mRenderMs = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+            mRenderSize = {w, h};
+            mRendered = GIFrame{mRenderMs, w, h};
+            mRenderedKey = key;
+            mGoodPreset = mPreset;
+        } else {
+            mRenderer.resolveTimings();  // the last GI frame finished long ago: its timings are ready
+        }
     } catch (const std::exception& e) {
         // Keep the last picture and go back to the settings that made it. The message stays
         // until dismissed, since the restored settings render fine on the next frame.

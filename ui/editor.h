@@ -61,12 +61,25 @@ public:
     std::string referenceSummary() const { return mReference.summary(); }
 
     // One scripted action, through the same functions the panels and shortcuts call:
-    //   set KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH | open PATH
+    //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
+    //   open PATH | pause | resume | wait
+    // (drag: the value set mid-drag, so the next frame renders the preview and the one after the full frame)
     // Throws gi::Error for an unknown action.
     void runAction(const std::string& action);
     bool scriptDone() const { return mScriptNext >= mScript.size(); }
-    // Wall time of the last frame's renderer call (the GI work, which today runs in the UI frame).
-    float renderMs() const { return mRenderMs; }
+    // The GI frame this UI frame rendered, if it rendered one: the renderer runs only when what it
+    // would draw has changed (settings, camera, scene, shaders, size), at 1/previewDivisor of the
+    // size while a drag or a camera flight is under way, and not at all while paused.
+    struct GIFrame {
+        float ms = 0.0f;  // wall time of the renderer call
+        int width = 0, height = 0;
+    };
+    std::optional<GIFrame> renderedFrame() const { return mRendered; }
+    // Pauses or resumes the GI work (the last image stays).
+    void setPaused(bool paused) { mPaused = paused; }
+    // The frame that is shown is of the current settings at full size, and nothing waits for the
+    // renderer: what a screenshot waits for.
+    bool giSettled() const { return mPaused || mRenderedKey == mLiveKey; }
     // What a test reads back: title, file, dirty, the errors and status shown, the path field, the undo history
     // (labels and position) and the preset as it would be saved.
     json state() const;
@@ -110,7 +123,15 @@ private:
     gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
-    float mRenderMs = 0.0f;
+    float mRenderMs = 0.0f;             // the last GI frame's renderer call
+    glm::ivec2 mRenderSize{0};          // and its size
+    std::optional<GIFrame> mRendered;   // this UI frame's GI frame
+    std::string mRenderedKey;           // liveKey() at full size, or with the preview divisor, of the image shown
+    std::string mLiveKey;               // liveKey() of this frame at full size
+    bool mPaused = false;               // no GI work; the last image stays
+    bool mInteracting = false;          // a drag, a typed value or a camera flight is under way
+    bool mScriptDrag = false;           // a script's drag action: the next frame is mid-drag
+    int mPreviewDivisor = 4;            // the preview's width and height are the viewport's / this (1: no preview)
     std::string mGLRenderer;
     std::vector<std::string> mSceneFiles;  // glTF files in the asset search path, as search-path names
     std::vector<std::filesystem::path> mPresetFiles;
@@ -137,7 +158,10 @@ private:
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
     // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
     void installScene(Preset& p, bool resetView);
-    void renderViewport(int width, int height);
+    void renderViewport(int width, int height, bool interacting);
+    // What the image depends on: the preset, the scene and the live generation (shader reloads,
+    // edits), and the size.
+    std::string liveKey(int width, int height) const;
     void openPreset(const std::filesystem::path& path);
     void savePresetAs(const std::filesystem::path& path);
     void scanFiles();

@@ -13,7 +13,7 @@ inline const ImVec4 kErrorColor{1.0f, 0.4f, 0.35f, 1.0f};
 inline const ImVec4 kWarningColor{1.0f, 0.8f, 0.35f, 1.0f};
 // Layout at first use: a left column for the preset, a right one for stats, the previewer and
 // the reference, and the middle of the window left free for the viewport.
-inline constexpr float kMargin = 8.0f, kLeftWidth = 330.0f, kRightWidth = 340.0f, kStatsHeight = 240.0f;
+inline constexpr float kMargin = 8.0f, kLeftWidth = 330.0f, kRightWidth = 340.0f, kStatsHeight = 330.0f;
 inline constexpr float kReferenceHeight = 205.0f;  // the Reference panel, at the bottom of the right column
 inline constexpr float kLabelWidth = 110.0f;       // room for the longest settings key beside its widget
 inline constexpr float kSideWindowWidth = 250.0f;  // a pass's own window, beside the Stats window over the viewport

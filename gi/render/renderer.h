@@ -69,6 +69,10 @@ public:
     bool pickSurface(glm::ivec2 px, SurfacePick& out) const;
     // Per-pass GPU ms (newest finished frame) and memory held.
     std::vector<PassStats> passStats() const;
+    // Reads the last frame's timings, waiting for them if need be. passStats() otherwise shows a
+    // frame's timings only once the next frame has been rendered; an editor that renders only on
+    // change calls this between frames.
+    void resolveTimings() { mTimer.resolve(true); }
     size_t memoryBytes() const;
     gl::GpuTimer& timer() { return mTimer; }
     // The technique pass of the last frame (technique none's pass for none).

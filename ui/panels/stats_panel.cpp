@@ -13,7 +13,21 @@ namespace gi::ui {
 
 void Editor::statsPanel() {
     ImGui::TextWrapped("%s", mGLRenderer.c_str());
-    ImGui::Text("frame %.1f ms (%.1f fps), %dx%d", mFrameMs, mFrameMs > 0 ? 1000.0f / mFrameMs : 0.0f, mWidth, mHeight);
+    ImGui::Text("UI %.1f ms (%.1f fps), %dx%d", mFrameMs, mFrameMs > 0 ? 1000.0f / mFrameMs : 0.0f, mWidth, mHeight);
+    // The GI renders only when its image would change: say what the picture on screen is.
+    const char* state = mPaused ? "paused" : giSettled() ? "up to date" : mRenderSize != glm::ivec2(mWidth, mHeight) ? "preview" : "rendering";
+    ImGui::Text("GI %.1f ms at %dx%d, %s", mRenderMs, mRenderSize.x, mRenderSize.y, state);
+    ImGui::Checkbox("pause GI (P)", &mPaused);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("stop rendering; the last image stays and settings can still be edited");
+    ImGui::SameLine();
+    static const int kDivisors[] = {1, 2, 4, 8};
+    int choice = int(std::find(std::begin(kDivisors), std::end(kDivisors), mPreviewDivisor) - std::begin(kDivisors));
+    ImGui::SetNextItemWidth(70.0f);
+    if (ImGui::Combo("drag preview", &choice, "off\0" "1/2\0" "1/4\0" "1/8\0") && choice >= 0 && choice < 4)
+        mPreviewDivisor = kDivisors[choice];
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("while a value is dragged or the camera flies, the GI renders at this fraction of the width and height;\n"
+                          "the full frame follows when you let go");
     size_t passBytes = 0;
     if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH)) {
         ImGui::TableSetupColumn("pass");
