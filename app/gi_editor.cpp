@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cstdlib>
 #include <sstream>
 #include <cstdio>
 #include <thread>
@@ -29,19 +30,20 @@ int run(int argc, char** argv) {
     app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(64, 16384));
     app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(64, 16384));
     app.add_option("--view", options.view, "Debug view the buffer previewer shows first (e.g. depth, shadow0)");
+    app.add_flag("--fill-view", options.fillView, "The buffer previewer's view fills the viewport from the start");
     app.add_option("--voxel-view", options.voxelView, "VCT: show the voxels in the viewport, coloured by this")
         ->check(CLI::IsMember({"albedo", "normal", "radiance"}));
     app.add_flag("--voxel-window", options.voxelWindow, "VCT: with --voxel-view, show it in a window instead of the viewport");
-    bool noCones = false;
-    app.add_flag("--no-cones", noCones, "VCT: do not draw the cone set at the picked pixel (at first the centre)");
     app.add_flag("--phase-plot", options.phasePlot,
-                 "Open the Phase function window (the volumetric phase function as a polar plot) from the start");
+                 "Open the Phase function window (the volumetric phase function as a polar plot) from the start (it is off by "
+                 "default, like every overlay)");
     app.add_flag("--mips-panel", options.roughnessMips,
                  "Open the environment settings' Roughness mips panel (the prefiltered chain and a preview of one mip) from the start");
     app.add_flag("--lights-panel", options.lightsPanel,
                  "Open the lights section with every light expanded (an area light's placed fields read-only) from the start");
     app.add_option("--previewer", options.previewers,
-                   "Show this previewer from the start (a name gi-render --views writes, e.g. environment.mips); repeatable");
+                   "Show this previewer from the start (a name gi-render --views writes, e.g. environment.mips, or an overlay: "
+                   "vct.cones, lpv.cascades); repeatable");
     app.add_option("--reference", options.reference, "Start the Reference panel in this view")
         ->check(CLI::IsMember({"live", "reference", "toggle", "split", "heat"}));
     app.add_option("--reference-spp", options.referenceSPP, "Samples per pixel of the reference (overrides reference.spp)")
@@ -49,7 +51,11 @@ int run(int argc, char** argv) {
     app.add_option("--reference-timeout", referenceTimeout,
                    "With --screenshot and --reference: seconds to wait for the reference before failing; 0: do not wait")
         ->check(CLI::Range(0.0, 86400.0));
-    std::string scriptFile, uiStats;
+    std::string scriptFile, uiStats, layout;
+    app.add_option("--layout", layout,
+                   "The user's layout file (column widths, previewers shown, buffer view, drag preview), read at start and "
+                   "written at exit; default for an interactive run: $XDG_CONFIG_HOME (or ~/.config)/gi-workbench/layout.json; "
+                   "runs with --frames, --seconds, --script or --screenshot use none unless given; 'none': no file");
     int frameDelayMs = 0;
     double seconds = 0.0;
     app.add_option("--seconds", seconds, "Run this many seconds, then exit (with --script: at least until its last action)")
@@ -79,10 +85,19 @@ int run(int argc, char** argv) {
         }
     }
     options.preset = preset;
-    options.coneOverlay = !noCones;
-    if (!screenshot.empty() && frames == 0) frames = 3;
+    if (!screenshot.empty() && frames == 0 && scriptFile.empty() && seconds == 0.0) frames = 3;
+    const bool testRun = frames > 0 || !scriptFile.empty() || seconds > 0.0 || !screenshot.empty();
+    if (layout.empty() && !testRun) {
+        const char* config = std::getenv("XDG_CONFIG_HOME");
+        const char* home = std::getenv("HOME");
+        if (config && *config) options.layoutFile = std::filesystem::path(config) / "gi-workbench" / "layout.json";
+        else if (home && *home) options.layoutFile = std::filesystem::path(home) / ".config" / "gi-workbench" / "layout.json";
+    } else if (layout != "none") {
+        options.layoutFile = layout;
+    }
 
     gi::ui::Window window(options.width, options.height, "GI Workbench");
+    options.resizeWindow = [&window](int w, int h) { window.setSize(w, h); };
     gi::ui::Editor editor(options);
     std::string title;
     const bool waitForReference = !screenshot.empty() && !options.reference.empty() && referenceTimeout > 0.0;
@@ -139,6 +154,11 @@ int run(int argc, char** argv) {
         window.swap();
         if (done) break;
         if (editor.title() != title) window.setTitle(title = editor.title());
+    }
+    try {
+        editor.saveLayout();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gi-editor: the layout was not saved: %s\n", e.what());
     }
     if (!uiStats.empty()) {
         gi::json stats = {{"uiFrameMs", uiFrameMs}, {"giFrameMs", giFrameMs}, {"giFrames", giFrames}, {"editor", editor.state()}};

@@ -20,11 +20,33 @@ glm::vec2 sourceUV(glm::vec2 screenUV, float zoom, glm::vec2 pan) { return (scre
 
 }  // namespace
 
+const DebugView* BufferPreviewer::findView(const std::vector<DebugView>& views) const {
+    for (const DebugView& v : views)
+        if (v.name == mView) return &v;
+    return nullptr;
+}
+
+bool BufferPreviewer::drawViewport(const Renderer& renderer, const ViewportRect& viewport) {
+    if (!mFill || viewport.width <= 0 || viewport.height <= 0) return false;
+    std::vector<DebugView> views = renderer.debugViews();
+    const DebugView* view = findView(views);
+    if (!view) return false;
+    renderImage(renderer, *view, mViewport, viewport.width, viewport.height);
+    glBlitNamedFramebuffer(mViewport.fbo.id(), 0, 0, 0, viewport.width, viewport.height, viewport.x, 0, viewport.x + viewport.width,
+                           viewport.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantCaptureMouse && viewport.contains(io.MousePos) && view->target == GL_TEXTURE_2D) {
+        glm::vec2 screenUV((io.MousePos.x - float(viewport.x)) / float(viewport.width), 1.0f - io.MousePos.y / float(viewport.height));
+        ImGui::BeginTooltip();
+        readout(*view, sourceUV(screenUV, mZoom, mPan));
+        ImGui::EndTooltip();
+    }
+    return true;
+}
+
 void BufferPreviewer::draw(const Renderer& renderer) {
     std::vector<DebugView> views = renderer.debugViews();
-    const DebugView* view = nullptr;
-    for (const DebugView& v : views)
-        if (v.name == mView) view = &v;
+    const DebugView* view = findView(views);
 
     if (ImGui::BeginCombo("view", mView.c_str())) {
         for (const DebugView& v : views)
@@ -38,7 +60,11 @@ void BufferPreviewer::draw(const Renderer& renderer) {
         mPan = glm::vec2(0.0f);
     }
     ImGui::SameLine();
-    ImGui::TextDisabled("%.2fx  (wheel: zoom, drag: pan)", mZoom);
+    ImGui::Checkbox("fill viewport", &mFill);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("show this view in the viewport instead of the final image; hover it for the texel readout");
+    ImGui::SameLine();
+    ImGui::TextDisabled("%.2fx", mZoom);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("wheel over the image: zoom, drag: pan");
     if (!view) {
         ImGui::TextDisabled("view '%s' is not available", mView.c_str());
         return;
@@ -51,10 +77,10 @@ void BufferPreviewer::draw(const Renderer& renderer) {
     float aspect = float(std::max(view->width, 1)) / float(std::max(view->height, 1));
     glm::vec2 size = avail.x / aspect <= avail.y ? glm::vec2(avail.x, avail.x / aspect) : glm::vec2(avail.y * aspect, avail.y);
     size = glm::max(glm::floor(size), glm::vec2(16.0f));
-    renderImage(renderer, *view, int(size.x), int(size.y));
+    renderImage(renderer, *view, mPanel, int(size.x), int(size.y));
 
     ImVec2 pos = ImGui::GetCursorScreenPos();
-    ImGui::Image(ImTextureID(intptr_t(mImage.id())), ImVec2(size.x, size.y), ImVec2(0, 1), ImVec2(1, 0));
+    ImGui::Image(ImTextureID(intptr_t(mPanel.image.id())), ImVec2(size.x, size.y), ImVec2(0, 1), ImVec2(1, 0));
     // An invisible button over the image takes the clicks, so dragging pans instead of moving the window.
     ImGui::SetCursorScreenPos(pos);
     ImGui::InvisibleButton("##image", ImVec2(size.x, size.y));
@@ -74,11 +100,11 @@ void BufferPreviewer::draw(const Renderer& renderer) {
     }
 }
 
-void BufferPreviewer::renderImage(const Renderer& renderer, const DebugView& view, int width, int height) {
-    if (!mImage || mImage.width() != width || mImage.height() != height) {
-        mImage = gl::Texture::create2D(GL_RGBA8, width, height);
-        if (!mFBO) mFBO = gl::createFramebuffer();
-        glNamedFramebufferTexture(mFBO.id(), GL_COLOR_ATTACHMENT0, mImage.id(), 0);
+void BufferPreviewer::renderImage(const Renderer& renderer, const DebugView& view, Target& target, int width, int height) {
+    if (!target.image || target.image.width() != width || target.image.height() != height) {
+        target.image = gl::Texture::create2D(GL_RGBA8, width, height);
+        if (!target.fbo) target.fbo = gl::createFramebuffer();
+        glNamedFramebufferTexture(target.fbo.id(), GL_COLOR_ATTACHMENT0, target.image.id(), 0);
     }
     Renderer::ViewParams params;
     params.channelMask = kChannelMasks[mChannel];
@@ -90,7 +116,7 @@ void BufferPreviewer::renderImage(const Renderer& renderer, const DebugView& vie
     params.shComponent = mVolume.shComponent;
     params.direction = mVolume.direction;
     params.falseColour = mVolume.falseColour;
-    glBindFramebuffer(GL_FRAMEBUFFER, mFBO.id());
+    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo.id());
     glViewport(0, 0, width, height);
     renderer.drawView(view, params);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -7,6 +7,7 @@
 
 #include "gi/gl/handle.h"
 #include "gi/render/renderer.h"
+#include "ui/panel_util.h"
 
 #include <glm/vec2.hpp>
 
@@ -20,6 +21,14 @@ public:
 
     // Draws the controls and the view into the current ImGui window, filling its content region.
     void draw(const Renderer& renderer);
+    // With "fill viewport" on: the view, at the viewport's size and with the same channel,
+    // exposure, zoom and pan, over the frame, and its texel readout by the mouse when it hovers
+    // the viewport. Returns whether it drew.
+    bool drawViewport(const Renderer& renderer, const ViewportRect& viewport);
+    bool fill() const { return mFill; }
+    void setFill(bool fill) { mFill = fill; }
+    const std::string& view() const { return mView; }
+    void setView(const std::string& view) { mView = view; }
 
 private:
     std::string mView;  // by name, so the choice survives the views being rebuilt
@@ -28,10 +37,15 @@ private:
     float mZoom = 1.0f;
     glm::vec2 mPan{0.0f};
     Renderer::ViewParams mVolume;  // slice, axis and what a voxel shows, for volume views
-    gl::Texture mImage;  // what the panel shows, rendered by drawView at the panel's size
-    gl::Framebuffer mFBO;
+    bool mFill = false;  // the view fills the viewport
+    struct Target {
+        gl::Texture image;  // rendered by drawView at the size it is shown
+        gl::Framebuffer fbo;
+    };
+    Target mPanel, mViewport;
 
-    void renderImage(const Renderer& renderer, const DebugView& view, int width, int height);
+    const DebugView* findView(const std::vector<DebugView>& views) const;
+    void renderImage(const Renderer& renderer, const DebugView& view, Target& target, int width, int height);
     void volumeControls(const DebugView& view);
     void interact(glm::vec2 screenUV, glm::vec2 size, bool dragging);
     static void readout(const DebugView& view, glm::vec2 uv);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <type_traits>
 
 namespace fs = std::filesystem;
@@ -20,7 +21,6 @@ namespace gi::ui {
 Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(options.width), mHeight(options.height) {
     for (const PassPanelEntry& e : passPanels()) mPanels.emplace_back(e.section, e.create(options));
     for (const std::string& name : options.previewers) mShowPreviewer[name] = true;
-    if (!options.coneOverlay) mShowPreviewer["vct.cones"] = false;
     mOpenLights = options.lightsPanel;
     mScrollToLights = mOpenLights ? 10 : 0;
     fs::path defaultFile = presetDir() / "default.json";
@@ -68,10 +68,44 @@ Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(
     settle(mPresetPath.empty() ? "opened " + options.preset.filename().string() : "opened " + mPresetPath.filename().string());
     mPresetError = openError;
     mScript = options.script;
+    mResizeWindow = options.resizeWindow;
+    mPreviewer.setFill(options.fillView);
+    mLayoutFile = options.layoutFile;
+    loadLayout();
+    for (const std::string& name : options.previewers) mShowPreviewer[name] = true;  // the command line wins
+    if (options.fillView) mPreviewer.setFill(true);
     mOutputFBO = gl::createFramebuffer();
     const GLubyte* renderer = glGetString(GL_RENDERER);
     mGLRenderer = renderer ? reinterpret_cast<const char*>(renderer) : "unknown";
     scanFiles();
+}
+
+void Editor::loadLayout() {
+    std::error_code ec;
+    if (mLayoutFile.empty() || !fs::exists(mLayoutFile, ec)) return;
+    try {
+        json j = json::parse(readTextFile(mLayoutFile, size_t(1) << 20));
+        mLeftWidth = std::max(j.value("leftWidth", mLeftWidth), kMinColumnWidth);
+        mRightWidth = std::max(j.value("rightWidth", mRightWidth), kMinColumnWidth);
+        const json previewers = j.value("previewers", json::object());
+        for (auto it = previewers.begin(); it != previewers.end(); ++it) mShowPreviewer[it.key()] = it.value().get<bool>();
+        mPreviewer.setView(j.value("view", mPreviewer.view()));
+        mPreviewer.setFill(j.value("fillView", mPreviewer.fill()));
+        mPreviewDivisor = std::clamp(j.value("dragPreview", mPreviewDivisor), 1, 8);
+    } catch (const std::exception& e) {
+        mPresetError = "layout " + mLayoutFile.string() + " ignored: " + e.what();
+    }
+}
+
+void Editor::saveLayout() const {
+    if (mLayoutFile.empty()) return;
+    json previewers = json::object();
+    for (const auto& [name, shown] : mShowPreviewer) previewers[name] = shown;
+    json j = {{"leftWidth", mLeftWidth}, {"rightWidth", mRightWidth}, {"previewers", previewers},
+              {"view", mPreviewer.view()},  {"fillView", mPreviewer.fill()}, {"dragPreview", mPreviewDivisor}};
+    std::error_code ec;
+    fs::create_directories(mLayoutFile.parent_path(), ec);
+    writeFileAtomic(mLayoutFile, j.dump(2) + "\n");
 }
 
 std::string Editor::title() const {
@@ -106,7 +140,14 @@ void Editor::frame(int width, int height, float dt) {
         mPaused = !mPaused;
 
     mRendered.reset();
-    if (width > 0 && height > 0) renderViewport(width, height, mInteracting || cameraMoved);
+    // The panels dock to the window's sides (drawPanels); the scene fills what lies between.
+    const float minViewport = 0.25f * float(width);
+    const float columns = mLeftWidth + mRightWidth;
+    const float shrink = columns > float(width) - minViewport && columns > 0.0f ? std::max(float(width) - minViewport, 0.0f) / columns : 1.0f;
+    mLeftWidth *= shrink;
+    mRightWidth *= shrink;
+    mViewport = {int(mLeftWidth), std::max(width - int(mLeftWidth) - int(mRightWidth), 1), height};
+    if (width > 0 && height > 0) renderViewport(mInteracting || cameraMoved);
     drawPanels();
     recordEdit(cameraMoved);
     // A script acts from the second frame on, one action per frame, as a user would.
@@ -206,6 +247,11 @@ void Editor::runAction(const std::string& action) {
         applySetting(mPreset, arg);
         apply(arg.rfind("scene=", 0) == 0 ? uint8_t(Cost::ReloadScene) : uint8_t(Cost::Uniform));
         mScriptDrag = verb == "drag";
+    } else if (verb == "resize") {
+        int w = 0, h = 0;
+        if (std::sscanf(arg.c_str(), "%dx%d", &w, &h) != 2 || w < 64 || h < 64 || !mResizeWindow)
+            throw Error("script: resize takes WIDTHxHEIGHT, each at least 64: '" + arg + "'");
+        mResizeWindow(w, h);
     } else if (verb == "wait") {
         // Nothing: a frame as a user who is looking at the picture.
     } else if (verb == "pause" || verb == "resume") {
@@ -246,6 +292,10 @@ json Editor::state() const {
             {"history", history},
             {"historyIndex", mHistory.index()},
             {"paused", mPaused},
+            {"window", {int(ImGui::GetIO().DisplaySize.x), int(ImGui::GetIO().DisplaySize.y)}},
+            {"leftColumnWidth", int(mLeftWidth)},
+            {"rightColumnX", int(mRightColumnX)},
+            {"viewport", {mViewport.x, mViewport.width, mViewport.height}},
             {"giSettled", giSettled()},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
 }
@@ -294,7 +344,8 @@ std::string Editor::liveKey(int width, int height) const {
            presetToJson(mPreset).dump();
 }
 
-void Editor::renderViewport(int width, int height, bool interacting) {
+void Editor::renderViewport(bool interacting) {
+    const int width = mViewport.width, height = mViewport.height;
     mWidth = width;
     mHeight = height;
     FrameSettings fs;
@@ -329,18 +380,20 @@ void Editor::renderViewport(int width, int height, bool interacting) {
         ++mLiveGeneration;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, width, height);
+    const ImVec2 window = ImGui::GetIO().DisplaySize;
+    glViewport(0, 0, int(window.x), int(window.y));
     glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     if (mRenderer.width() > 0) {
         // Attached every frame: a resized output texture may reuse the old one's name.
         glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
-        glBlitNamedFramebuffer(mOutputFBO.id(), 0, 0, 0, mRenderer.width(), mRenderer.height(), 0, 0, width, height,
-                               GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glBlitNamedFramebuffer(mOutputFBO.id(), 0, 0, 0, mRenderer.width(), mRenderer.height(), mViewport.x, 0,
+                               mViewport.x + width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        mPreviewer.drawViewport(mRenderer, mViewport);
         PanelContext ctx = panelContext();
-        for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, width, height);
+        for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, mViewport);
         mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer);
-        mReference.drawViewport(width, height);
+        mReference.drawViewport(mViewport);
     }
 }
 
@@ -418,8 +471,8 @@ void Editor::drawPanels() {
     uint8_t cost = 0;
     const ImGuiIO& io = ImGui::GetIO();
     // A left click on the viewport (not on a panel) picks the focus pixel the overlays point at.
-    if (!io.WantCaptureMouse && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && display.x > 0.0f && display.y > 0.0f) {
-        mPickUV = glm::vec2(io.MousePos.x / display.x, 1.0f - io.MousePos.y / display.y);
+    if (!io.WantCaptureMouse && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && mViewport.contains(io.MousePos)) {
+        mPickUV = glm::vec2((io.MousePos.x - float(mViewport.x)) / float(mViewport.width), 1.0f - io.MousePos.y / float(mViewport.height));
         mPickPending = true;
     }
     readFocus();
@@ -428,9 +481,16 @@ void Editor::drawPanels() {
     drawOverlays(frame, previewers);
     PanelContext ctx = panelContext();
 
-    ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kLeftWidth, display.y - 2 * kMargin), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("GI Workbench")) {
+    // The columns: docked to the window's sides at its full height; their widths follow a drag of
+    // their inner edge, and the viewport takes the rest (mViewport, in frame()).
+    const float maxColumn = std::max(0.4f * display.x, kMinColumnWidth);
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(mLeftWidth, display.y), ImGuiCond_Always);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(kMinColumnWidth, display.y), ImVec2(maxColumn, display.y));
+    const ImGuiWindowFlags docked = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse;
+    bool leftOpen = ImGui::Begin("GI Workbench", nullptr, docked);
+    mLeftWidth = ImGui::GetWindowWidth();
+    if (leftOpen) {
         ImGui::PushItemWidth(-kLabelWidth);
         if (!mFrameError.empty()) {
             wrappedText(kErrorColor, mFrameError);
@@ -477,31 +537,33 @@ void Editor::drawPanels() {
     }
     ImGui::End();
 
-    float rightX = display.x - kRightWidth - kMargin;
-    ImGui::SetNextWindowPos(ImVec2(rightX, kMargin), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kRightWidth, kStatsHeight), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Stats")) statsPanel();
-    ImGui::End();
-
-    float previewerHeight = display.y - kStatsHeight - kReferenceHeight - 4 * kMargin;
-    ImGui::SetNextWindowPos(ImVec2(rightX, kStatsHeight + 2 * kMargin), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kRightWidth, previewerHeight), ImGuiCond_FirstUseEver);
+    // The right column: Stats, the buffer previewer and the Reference panel, stacked; a drag of any
+    // one's inner edge sets the column's width.
+    const float rightX = display.x - mRightWidth;
+    float rightWidth = mRightWidth;
+    auto column = [&](const char* name, float y, float height, ImGuiWindowFlags flags, auto&& body) {
+        ImGui::SetNextWindowPos(ImVec2(rightX, y), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(mRightWidth, height), ImGuiCond_Always);
+        ImGui::SetNextWindowSizeConstraints(ImVec2(kMinColumnWidth, height), ImVec2(maxColumn, height));
+        if (ImGui::Begin(name, nullptr, docked | flags)) body();
+        if (ImGui::GetWindowWidth() != mRightWidth) rightWidth = ImGui::GetWindowWidth();
+        mRightColumnX = ImGui::GetWindowPos().x;
+        ImGui::End();
+    };
+    column("Stats", 0.0f, kStatsHeight, 0, [&] { statsPanel(); });
     // The wheel zooms the image, so it must not scroll the window.
-    if (ImGui::Begin("Buffer previewer", nullptr, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse)) {
-        ImGui::PushItemWidth(-kLabelWidth * 0.6f);
-        mPreviewer.draw(mRenderer);
-        ImGui::PopItemWidth();
-    }
-    ImGui::End();
-
-    ImGui::SetNextWindowPos(ImVec2(rightX, display.y - kReferenceHeight - kMargin), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kRightWidth, kReferenceHeight), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Reference")) {
+    column("Buffer previewer", kStatsHeight, std::max(display.y - kStatsHeight - kReferenceHeight, 64.0f),
+           ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse, [&] {
+               ImGui::PushItemWidth(-kLabelWidth * 0.6f);
+               mPreviewer.draw(mRenderer);
+               ImGui::PopItemWidth();
+           });
+    column("Reference", display.y - kReferenceHeight, kReferenceHeight, 0, [&] {
         ImGui::PushItemWidth(-kLabelWidth * 0.6f);
         mReference.draw();
         ImGui::PopItemWidth();
-    }
-    ImGui::End();
+    });
+    mRightWidth = rightWidth;
 
     for (auto& [section, p] : mPanels) p->drawWindows(ctx);
     previewerWindows(frame, previewers);
@@ -531,7 +593,7 @@ void Editor::passExtras(std::string_view section, const FrameSettings& fs, const
             ImGui::TextUnformatted("previewers");
             any = true;
         }
-        auto [it, added] = mShowPreviewer.try_emplace(p.name, bool(p.overlay));
+        auto [it, added] = mShowPreviewer.try_emplace(p.name, false);
         ImGui::Checkbox((p.name + (p.overlay ? " (over the viewport)" : " (window)")).c_str(), &it->second);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
     }
@@ -569,17 +631,16 @@ void Editor::drawOverlays(const FrameSettings& fs, const std::vector<Previewer>&
     PreviewContext ctx = mRenderer.previewContext(fs, std::nullopt);
     ctx.focus = mFocus;
     ctx.overlayScale = mOverlayScale;
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     for (const Previewer& p : previewers) {
         if (!p.overlay) continue;
-        auto [it, added] = mShowPreviewer.try_emplace(p.name, true);
-        if (!it->second) continue;
+        auto it = mShowPreviewer.find(p.name);
+        if (it == mShowPreviewer.end() || !it->second) continue;
         for (const GlyphLine& l : p.overlay(ctx)) {
             glm::vec4 c = glm::clamp(l.colour, 0.0f, 1.0f) * 255.0f;
             ImU32 colour = IM_COL32(int(c.r), int(c.g), int(c.b), int(c.a));
             ImVec2 sa, sb;
-            if (!projectToScreen(ctx.viewProj, l.a, display, sa) || !projectToScreen(ctx.viewProj, l.b, display, sb)) continue;
+            if (!projectToScreen(ctx.viewProj, l.a, mViewport, sa) || !projectToScreen(ctx.viewProj, l.b, mViewport, sb)) continue;
             if (l.a == l.b)
                 draw->AddCircleFilled(sa, 0.5f * l.width, colour);
             else

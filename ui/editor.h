@@ -11,10 +11,12 @@
 #include "gi/scene/scene.h"
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
+#include "ui/panel_util.h"
 #include "ui/pass_panel.h"
 #include "ui/reference_panel.h"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,14 +33,18 @@ struct EditorOptions {
     int referenceSPP = 0;          // > 0: overrides the preset's reference.spp
     std::string voxelView;         // VCT: albedo, normal or radiance shows that voxel view in the viewport
     bool voxelWindow = false;      // the voxel view in its own window instead of the viewport
-    bool coneOverlay = true;       // VCT: the cone set at the picked pixel (at first the centre) over the viewport
-    std::vector<std::string> previewers;  // previewers (gi-render --views names) shown from the start
+    std::vector<std::string> previewers;  // previewers (gi-render --views names, or overlays: vct.cones, lpv.cascades) shown from the start
     bool phasePlot = false;        // the Phase function window open from the start (it also opens when volumetric is on)
     bool roughnessMips = false;    // the environment section's Roughness mips panel open, and scrolled to, from the start
     bool lightsPanel = false;      // the lights section open with every light expanded, and scrolled to, from the start
     // Actions run one per frame after the first frame, as a user would do them (Editor::runAction):
     // tests drive the editor with these under Xvfb.
     std::vector<std::string> script;
+    bool fillView = false;         // the buffer previewer's view fills the viewport from the start
+    // The user's layout (column widths, the previewers shown, the buffer view and whether it fills
+    // the viewport, the drag preview): read at start and written by saveLayout(); empty: none.
+    std::filesystem::path layoutFile;
+    std::function<void(int, int)> resizeWindow;  // the script's resize action (the window is the caller's)
 };
 
 class Editor {
@@ -62,7 +68,7 @@ public:
 
     // One scripted action, through the same functions the panels and shortcuts call:
     //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
-    //   open PATH | pause | resume | wait
+    //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT
     // (drag: the value set mid-drag, so the next frame renders the preview and the one after the full frame)
     // Throws gi::Error for an unknown action.
     void runAction(const std::string& action);
@@ -77,6 +83,9 @@ public:
     std::optional<GIFrame> renderedFrame() const { return mRendered; }
     // Pauses or resumes the GI work (the last image stays).
     void setPaused(bool paused) { mPaused = paused; }
+    // Writes the layout to EditorOptions::layoutFile (atomically); nothing when there is none.
+    // Throws gi::Error when it cannot be written.
+    void saveLayout() const;
     // The frame that is shown is of the current settings at full size, and nothing waits for the
     // renderer: what a screenshot waits for.
     bool giSettled() const { return mPaused || mRenderedKey == mLiveKey; }
@@ -97,7 +106,7 @@ private:
     size_t mScriptNext = 0;
     uint64_t mFrames = 0;
     // Previewers of the active passes (Renderer::previewers): which are shown (overlays over
-    // the viewport, images in windows), by name; overlays start shown.
+    // the viewport, images in windows), by name; all start hidden, each with its own switch.
     std::map<std::string, bool> mShowPreviewer;
     float mOverlayScale = 1.0f;     // glyph size relative to the previewers' default
     glm::vec2 mPickUV{0.5f};        // the focus pixel of the viewport, 0..1 from the bottom left
@@ -131,6 +140,13 @@ private:
     bool mPaused = false;               // no GI work; the last image stays
     bool mInteracting = false;          // a drag, a typed value or a camera flight is under way
     bool mScriptDrag = false;           // a script's drag action: the next frame is mid-drag
+    float mLeftWidth = kLeftWidth;      // the docked columns' widths (dragged by their inner edges)
+    float mRightWidth = kRightWidth;
+    ViewportRect mViewport;             // the window between them, where the scene is drawn
+    float mRightColumnX = 0.0f;         // where the right column's windows stand (read back from ImGui)
+    std::function<void(int, int)> mResizeWindow;
+    std::filesystem::path mLayoutFile;
+    void loadLayout();  // a missing file is no error; a broken one is reported and ignored
     int mPreviewDivisor = 4;            // the preview's width and height are the viewport's / this (1: no preview)
     std::string mGLRenderer;
     std::vector<std::string> mSceneFiles;  // glTF files in the asset search path, as search-path names
@@ -158,7 +174,7 @@ private:
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
     // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
     void installScene(Preset& p, bool resetView);
-    void renderViewport(int width, int height, bool interacting);
+    void renderViewport(bool interacting);
     // What the image depends on: the preset, the scene and the live generation (shader reloads,
     // edits), and the size.
     std::string liveKey(int width, int height) const;

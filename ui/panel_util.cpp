@@ -20,10 +20,10 @@ std::string lowercase(std::string s) {
 
 double mebibytes(size_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 
-bool projectToScreen(const glm::mat4& viewProj, const glm::vec3& p, ImVec2 display, ImVec2& out) {
+bool projectToScreen(const glm::mat4& viewProj, const glm::vec3& p, const ViewportRect& viewport, ImVec2& out) {
     glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
     if (c.w <= 1e-4f) return false;
-    out = ImVec2((c.x / c.w * 0.5f + 0.5f) * display.x, (0.5f - c.y / c.w * 0.5f) * display.y);
+    out = ImVec2(float(viewport.x) + (c.x / c.w * 0.5f + 0.5f) * float(viewport.width), (0.5f - c.y / c.w * 0.5f) * float(viewport.height));
     return true;
 }
 

@@ -8,6 +8,7 @@
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/scene.h"
+#include "ui/panel_util.h"
 
 #include <cstdint>
 #include <memory>
@@ -35,8 +36,8 @@ public:
     virtual bool openAtStart() const { return false; }
     // Below the section's fields; returns the OR of the Cost bits of what it changed.
     virtual uint8_t drawSection(PanelContext&) { return 0; }
-    // Into the viewport (the default framebuffer, width x height) after the frame is drawn there.
-    virtual void drawViewport(PanelContext&, const FrameSettings&, int /*width*/, int /*height*/) {}
+    // Into the viewport (its rectangle of the default framebuffer) after the frame is drawn there.
+    virtual void drawViewport(PanelContext&, const FrameSettings&, const ViewportRect&) {}
     // Its own windows.
     virtual void drawWindows(PanelContext&) {}
 };

@@ -14,8 +14,6 @@ namespace gi::ui {
 
 namespace {
 
-const ImVec4 kErrorColor{1.0f, 0.4f, 0.35f, 1.0f};
-const ImVec4 kWarningColor{1.0f, 0.8f, 0.35f, 1.0f};
 constexpr float kSplitGrabPixels = 6.0f;  // how near the split line a press grabs it
 
 constexpr std::pair<ReferenceView, const char*> kViewNames[] = {{ReferenceView::Live, "live"},
@@ -222,51 +220,50 @@ bool ReferencePanel::referenceShown() const {
     return mEnabled && !mStale && mShownImage && mReferenceTexture;
 }
 
-void ReferencePanel::blit(const gl::Texture& texture, int width, int height) {
+void ReferencePanel::blit(const gl::Texture& texture, const ViewportRect& v) {
     if (!mReadFBO) mReadFBO = gl::createFramebuffer();
     glNamedFramebufferTexture(mReadFBO.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);
     // The images' rows are top first, the window's bottom first: the blit flips them.
-    glBlitNamedFramebuffer(mReadFBO.id(), 0, 0, 0, texture.width(), texture.height(), 0, height, width, 0,
+    glBlitNamedFramebuffer(mReadFBO.id(), 0, 0, 0, texture.width(), texture.height(), v.x, v.height, v.x + v.width, 0,
                            GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
-void ReferencePanel::splitInteraction() {
+void ReferencePanel::splitInteraction(const ViewportRect& v) {
     const ImGuiIO& io = ImGui::GetIO();
-    if (io.DisplaySize.x <= 0.0f) return;
-    float lineX = mSplit * io.DisplaySize.x;
+    if (v.width <= 0) return;
+    float lineX = float(v.x) + mSplit * float(v.width);
     bool nearLine = !io.WantCaptureMouse && std::abs(io.MousePos.x - lineX) <= kSplitGrabPixels;
     if (nearLine && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) mDraggingSplit = true;
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) mDraggingSplit = false;
-    if (mDraggingSplit) mSplit = std::clamp(io.MousePos.x / io.DisplaySize.x, 0.0f, 1.0f);
+    if (mDraggingSplit) mSplit = std::clamp((io.MousePos.x - float(v.x)) / float(v.width), 0.0f, 1.0f);
     if (nearLine || mDraggingSplit) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
 }
 
-void ReferencePanel::drawViewport(int width, int height) {
+void ReferencePanel::drawViewport(const ViewportRect& viewport) {
     if (!mEnabled) return;
     ReferenceView view = mView;
     if (view == ReferenceView::Toggle) {
         bool spaceHeld = !ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyDown(GLFW_KEY_SPACE);
         view = mHoldButton || spaceHeld ? ReferenceView::Reference : ReferenceView::Live;
     }
-    if (view == ReferenceView::Split) splitInteraction();
+    if (view == ReferenceView::Split) splitInteraction(viewport);
     if (!referenceShown()) return;
 
     if (view == ReferenceView::Reference) {
-        blit(mReferenceTexture, width, height);
+        blit(mReferenceTexture, viewport);
     } else if (view == ReferenceView::Heat) {
-        if (mHaveMetrics && mHeatTexture) blit(mHeatTexture, width, height);
+        if (mHaveMetrics && mHeatTexture) blit(mHeatTexture, viewport);
     } else if (view == ReferenceView::Split) {
-        int splitX = int(std::lround(mSplit * float(width)));
+        int splitX = viewport.x + int(std::lround(mSplit * float(viewport.width)));
         glEnable(GL_SCISSOR_TEST);
-        glScissor(splitX, 0, width - splitX, height);
-        blit(mReferenceTexture, width, height);
+        glScissor(splitX, 0, viewport.x + viewport.width - splitX, viewport.height);
+        blit(mReferenceTexture, viewport);
         glDisable(GL_SCISSOR_TEST);
 
         // The line and the labels go behind the panels, like the viewport itself.
         ImDrawList* draw = ImGui::GetBackgroundDrawList();
-        const ImVec2 display = ImGui::GetIO().DisplaySize;
-        float x = std::round(mSplit * display.x);
-        draw->AddLine(ImVec2(x, 0.0f), ImVec2(x, display.y), IM_COL32(255, 255, 255, 220), 2.0f);
+        float x = std::round(float(viewport.x) + mSplit * float(viewport.width));
+        draw->AddLine(ImVec2(x, 0.0f), ImVec2(x, float(viewport.height)), IM_COL32(255, 255, 255, 220), 2.0f);
         auto label = [&](const char* text, bool leftOfLine) {
             ImVec2 size = ImGui::CalcTextSize(text);
             ImVec2 pos(leftOfLine ? x - size.x - 10.0f : x + 10.0f, 12.0f);

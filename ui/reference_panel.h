@@ -20,6 +20,7 @@
 #pragma once
 
 #include "gi/gl/handle.h"
+#include "ui/panel_util.h"
 #include "gi/metrics/metrics.h"
 #include "gi/render/renderer.h"
 #include "ui/reference_job.h"
@@ -56,7 +57,7 @@ public:
     void update(const Scene& scene, uint64_t sceneGeneration, uint64_t liveGeneration, const FrameSettings& fs,
                 const ReferenceSettings& rs, const Renderer& renderer);
     // Draws the chosen view over the live image already in the default framebuffer.
-    void drawViewport(int width, int height);
+    void drawViewport(const ViewportRect& viewport);
     // The panel's widgets, into the current ImGui window.
     void draw();
 
@@ -129,8 +130,8 @@ private:
     void pickUpSnapshot();
     void updateMetrics(const Renderer& renderer);
     bool referenceShown() const;
-    void blit(const gl::Texture& texture, int width, int height);
-    void splitInteraction();
+    void blit(const gl::Texture& texture, const ViewportRect& viewport);
+    void splitInteraction(const ViewportRect& viewport);
 };
 
 }  // namespace gi::ui

@@ -102,6 +102,8 @@ void Window::swap() { glfwSwapBuffers(mWindow); }
 
 void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(mWindow, &width, &height); }
 
+void Window::setSize(int width, int height) { glfwSetWindowSize(mWindow, width, height); }
+
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(mWindow, title.c_str()); }
 
 }  // namespace gi::ui

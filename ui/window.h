@@ -40,6 +40,7 @@ public:
 
     void framebufferSize(int& width, int& height) const;
     void setTitle(const std::string& title);
+    void setSize(int width, int height);
 
 private:
     GLFWwindow* mWindow = nullptr;

@@ -82,14 +82,17 @@ VoxelView::VoxelView()
 }
 
 void VoxelView::render(const std::vector<VoxelGridView>& grids, const VoxelViewParams& params, GLuint framebuffer, int width,
-                       int height) const {
+                       int height, int x) const {
     GI_ASSERT(width > 0 && height > 0, "voxel view of an empty size");
     glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, "vct.voxelView");
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, width, height);
+    glViewport(x, 0, width, height);
     if (grids.empty()) {
         glClearColor(params.background.r, params.background.g, params.background.b, 1.0f);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(x, 0, width, height);
         glClear(GL_COLOR_BUFFER_BIT);
+        glDisable(GL_SCISSOR_TEST);
     } else {
         const VoxelGridView& g = grids[size_t(std::clamp(params.level, 0, int(grids.size()) - 1))];
         bool radiance = params.source == VoxelViewSource::Radiance;

@@ -79,9 +79,9 @@ class VoxelView {
 public:
     VoxelView();  // compiles the program; throws gi::Error on a shader error
 
-    // Draws the view into `framebuffer` over (0, 0, width, height), display-encoded (sRGB).
+    // Draws the view into `framebuffer` over (x, 0, width, height), display-encoded (sRGB).
     void render(const std::vector<VoxelGridView>& grids, const VoxelViewParams& params, GLuint framebuffer, int width,
-                int height) const;
+                int height, int x = 0) const;
     // Renders into a new RGBA8 image, bottom row first.
     std::vector<uint8_t> renderImage(const std::vector<VoxelGridView>& grids, const VoxelViewParams& params, int width,
                                      int height) const;

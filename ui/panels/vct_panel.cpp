@@ -57,9 +57,9 @@ public:
         return 0;
     }
 
-    void drawViewport(PanelContext& ctx, const FrameSettings& fs, int width, int height) override {
+    void drawViewport(PanelContext& ctx, const FrameSettings& fs, const ViewportRect& viewport) override {
         if (mDisplay != Display::Viewport || fs.technique != VCTSettings::kSection) return;
-        render(ctx, fs, 0, width, height);
+        render(ctx, fs, 0, viewport.width, viewport.height, viewport.x);
     }
 
     void drawWindows(PanelContext& ctx) override {
@@ -92,12 +92,12 @@ private:
     gl::Texture mImage;      // the window's picture
     gl::Framebuffer mFBO;
 
-    void render(PanelContext& ctx, const FrameSettings& fs, GLuint framebuffer, int width, int height) {
+    void render(PanelContext& ctx, const FrameSettings& fs, GLuint framebuffer, int width, int height, int x = 0) {
         std::vector<VoxelGridView> grids = voxelGrids(ctx.renderer.debugViews(), fs, ctx.scene.bounds);
         VoxelViewParams params = mParams;
         params.viewProj = projectionMatrix(fs.camera, float(width) / float(height)) * viewMatrix(fs.camera);
         if (mAutoLevel) params.level = finestLevelHolding(grids, fs.camera.target);
-        mView.render(grids, params, framebuffer, width, height);
+        mView.render(grids, params, framebuffer, width, height, x);
     }
 };
 

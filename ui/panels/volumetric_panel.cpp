@@ -34,14 +34,10 @@ private:
     bool mShow = false;
     bool mLog = false;      // the plot's radius on the log scale of gi/volumetric/phase_plot.h
     bool mOthers = true;    // the other five functions as faint curves
-    bool mWasOn = false;    // volumetric.enabled last frame
 };
 
 void VolumetricPanel::drawWindows(PanelContext& ctx) {
     const VolumetricSettings& v = ctx.preset.volumetric;
-    // Switching volumetric lighting on shows its phase function.
-    if (v.enabled && !mWasOn) mShow = true;
-    mWasOn = v.enabled;
     if (!mShow) return;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(display.x - kRightWidth - kSideWindowWidth - 2 * kMargin, kMargin), ImGuiCond_FirstUseEver);

@@ -1,0 +1,49 @@
+# The docked layout under Xvfb (issue 14 item 3): the panels stand in two columns at the window's
+# sides and the scene is drawn between them; after the window is resized the right column moves
+# with the window's edge and the viewport takes the new room. The user's layout file sets the
+# column widths, the previewers shown and the drag preview at start and is written back at exit.
+# -DEDITOR, -DCHECKER and -DWORK (a scratch folder) come from tests/CMakeLists.txt.
+find_program(XVFB_RUN xvfb-run)
+if(NOT XVFB_RUN)
+  message(FATAL_ERROR "xvfb-run not found: run scripts/install-deps.sh")
+endif()
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+file(WRITE ${WORK}/layout.json
+  "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2}\n")
+file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\n")
+execute_process(
+  COMMAND ${XVFB_RUN} -a -s "-screen 0 1400x900x24" ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
+          --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json --screenshot ${WORK}/resized.png
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+message("${out}${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "gi-editor exited with ${rc}")
+endif()
+file(READ ${WORK}/stats.json stats)
+function(expect what actual expected)
+  if(NOT "${actual}" STREQUAL "${expected}")
+    message(FATAL_ERROR "${what}: got '${actual}', expected '${expected}'")
+  endif()
+endfunction()
+string(JSON w GET "${stats}" editor window 0)
+string(JSON h GET "${stats}" editor window 1)
+expect("window after the resize" "${w}x${h}" "1200x700")
+string(JSON left GET "${stats}" editor leftColumnWidth)
+expect("left column (from the layout file)" "${left}" "380")
+string(JSON rightX GET "${stats}" editor rightColumnX)
+expect("right column's left edge (window width - 300)" "${rightX}" "900")
+string(JSON vx GET "${stats}" editor viewport 0)
+string(JSON vw GET "${stats}" editor viewport 1)
+string(JSON vh GET "${stats}" editor viewport 2)
+expect("viewport (x, width, height) between the columns" "${vx} ${vw} ${vh}" "380 520 700")
+execute_process(COMMAND ${CHECKER} ${WORK}/resized.png 1200 700 RESULT_VARIABLE rc2 OUTPUT_VARIABLE out2 ERROR_VARIABLE err2)
+message("${out2}${err2}")
+if(NOT rc2 EQUAL 0)
+  message(FATAL_ERROR "screenshot check failed")
+endif()
+file(READ ${WORK}/layout.json saved)
+string(JSON savedLeft GET "${saved}" leftWidth)
+string(JSON savedPreview GET "${saved}" dragPreview)
+string(JSON cones GET "${saved}" previewers vct.cones)
+expect("saved layout (leftWidth, dragPreview, vct.cones)" "${savedLeft} ${savedPreview} ${cones}" "380.0 2 ON")
