@@ -11,7 +11,7 @@ editor=$1 preset=$2 stats=$3
 pid=$!
 xdotool search --sync --onlyvisible --name "GI Workbench" > /dev/null
 sleep 6
-xdotool mousemove 110 287 click 1   # the path field (fixed layout: no imgui.ini)
+xdotool mousemove 60 279 click 1    # the path field (fixed layout: no imgui.ini)
 sleep 4                              # at least two frames: the field is active before the keys come
 xdotool key End
 sleep 0.2

@@ -3,12 +3,7 @@
 # with the window's edge and the viewport takes the new room. The user's layout file sets the
 # column widths, the previewers shown and the drag preview at start and is written back at exit.
 # -DEDITOR, -DCHECKER and -DWORK (a scratch folder) come from tests/CMakeLists.txt.
-find_program(XVFB_RUN xvfb-run)
-if(NOT XVFB_RUN)
-  message(FATAL_ERROR "xvfb-run not found: run scripts/install-deps.sh")
-endif()
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 file(WRITE ${WORK}/layout.json
   "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2}\n")
 file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\n")
@@ -21,11 +16,6 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "gi-editor exited with ${rc}")
 endif()
 file(READ ${WORK}/stats.json stats)
-function(expect what actual expected)
-  if(NOT "${actual}" STREQUAL "${expected}")
-    message(FATAL_ERROR "${what}: got '${actual}', expected '${expected}'")
-  endif()
-endfunction()
 string(JSON w GET "${stats}" editor window 0)
 string(JSON h GET "${stats}" editor window 1)
 expect("window after the resize" "${w}x${h}" "1200x700")

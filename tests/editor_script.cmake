@@ -6,12 +6,7 @@
 #  3. --preset BAD opens the editor on the default with the error shown; opening a good preset
 #     clears it.
 # -DEDITOR, -DPRESET_DIR, -DWORK (a scratch folder) are given by tests/CMakeLists.txt.
-find_program(XVFB_RUN xvfb-run)
-if(NOT XVFB_RUN)
-  message(FATAL_ERROR "xvfb-run not found: run scripts/install-deps.sh")
-endif()
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 
 function(run_editor name preset script)
   file(WRITE ${WORK}/${name}.txt "${script}")
@@ -27,11 +22,6 @@ function(run_editor name preset script)
   set(stats "${stats}" PARENT_SCOPE)
 endfunction()
 
-function(expect what actual expected)
-  if(NOT "${actual}" STREQUAL "${expected}")
-    message(FATAL_ERROR "${what}: got '${actual}', expected '${expected}'")
-  endif()
-endfunction()
 
 # 1. Edits, undo, resets and Save As.
 file(COPY ${PRESET_DIR}/basic.json DESTINATION ${WORK})
