@@ -87,4 +87,24 @@ string(JSON errors LENGTH "${stats}" editor errors)
 expect("errors after a good preset opened" "${errors}" 0)
 string(JSON file GET "${stats}" editor file)
 expect("file after open" "${file}" "${WORK}/mine.json")
+
+# 4. Views: the current camera saved as a named view in the preset, a jump back to it after the
+# camera changed, a jump to the file's camera 0, and the views written by Save As.
+file(COPY ${PRESET_DIR}/basic.json DESTINATION ${WORK}/views)
+run_editor(views ${WORK}/views/basic.json "set camera.fovY=55
+bookmark wide
+set camera.fovY=30
+goto wide
+save-as ${WORK}/views/saved.json
+camera 0
+")
+string(JSON fov GET "${stats}" editor preset camera fovY)
+expect("fovY after the jump to the file camera (55 before it)" "${fov}" "45.0")
+file(READ ${WORK}/views/saved.json saved)
+string(JSON name GET "${saved}" bookmarks 0 name)
+string(JSON savedFov GET "${saved}" bookmarks 0 fovY)
+string(JSON cameraFov GET "${saved}" camera fovY)
+expect("saved view (name, fovY) and the camera after goto" "${name} ${savedFov} ${cameraFov}" "wide 55.0 55.0")
+string(JSON label GET "${stats}" editor history 2)
+expect("the bookmark's undo step" "${label}" "bookmarks 0 views -> 1 views")
 message("editor script checks passed")

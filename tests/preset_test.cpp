@@ -245,5 +245,29 @@ TEST(Preset, AssetSearchPathOrder) {
     }
 }
 
+TEST(Preset, BookmarksRoundTripAndBadOnesNameTheirKey) {
+    Preset p;
+    CameraBookmark wide;
+    wide.name = "wide";
+    wide.eye = {1.0f, 2.0f, 3.0f};
+    wide.fovY = 55.0f;
+    p.bookmarks.push_back(wide);
+    const std::string saved = presetToSavedJson(p).dump();
+    Preset back = presetFromText(saved, "saved");
+    ASSERT_EQ(back.bookmarks.size(), 1u);
+    EXPECT_EQ(back.bookmarks[0].name, "wide");
+    EXPECT_EQ(back.bookmarks[0].eye, wide.eye);
+    EXPECT_EQ(back.bookmarks[0].fovY, 55.0f);
+    // No views: no "bookmarks" key at all.
+    EXPECT_EQ(presetToSavedJson(Preset{}).dump().find("bookmarks"), std::string::npos);
+    try {
+        presetFromText(R"({"schemaVersion": 2, "bookmarks": [{"name": "a", "fovY": 500}]})", "views.json");
+        FAIL() << "an out-of-range fovY was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bookmarks.0.fovY"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(presetFromText(R"({"schemaVersion": 2, "bookmarks": {"name": "a"}})", "views.json"), Error);
+}
+
 }  // namespace
 }  // namespace gi

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <type_traits>
 
 namespace fs = std::filesystem;
@@ -123,7 +124,9 @@ void Editor::frame(int width, int height, float dt) {
         camera.sceneCamera = -1;
     }
     float radius = mScene.bounds.valid() ? 0.5f * glm::length(mScene.bounds.extent()) : 1.0f;
-    bool cameraMoved = mFlyCamera.update(camera, dt, radius);
+    // A slow frame moves the camera by at most kMaxFlyStepSeconds of flight: a tap of W during a
+    // 1 s frame is not a second's flight.
+    bool cameraMoved = mFlyCamera.update(camera, std::min(dt, kMaxFlyStepSeconds), radius);
     if (cameraMoved) {
         mPreset.camera = camera;
         apply(uint8_t(Cost::Uniform));
@@ -252,6 +255,16 @@ void Editor::runAction(const std::string& action) {
         if (std::sscanf(arg.c_str(), "%dx%d", &w, &h) != 2 || w < 64 || h < 64 || !mResizeWindow)
             throw Error("script: resize takes WIDTHxHEIGHT, each at least 64: '" + arg + "'");
         mResizeWindow(w, h);
+    } else if (verb == "bookmark") {
+        addBookmark(arg);
+    } else if (verb == "goto") {
+        auto it = std::find_if(mPreset.bookmarks.begin(), mPreset.bookmarks.end(), [&](const CameraBookmark& b) { return b.name == arg; });
+        if (it == mPreset.bookmarks.end()) throw Error("script: no view named '" + arg + "'");
+        jumpTo(*it);
+    } else if (verb == "camera") {
+        int i = std::atoi(arg.c_str());
+        if (i < 0 || i >= int(mScene.cameras.size())) throw Error("script: the scene has no camera " + arg);
+        takeFileCamera(size_t(i));
     } else if (verb == "wait") {
         // Nothing: a frame as a user who is looking at the picture.
     } else if (verb == "pause" || verb == "resume") {

@@ -68,7 +68,7 @@ public:
 
     // One scripted action, through the same functions the panels and shortcuts call:
     //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
-    //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT
+    //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT | bookmark NAME | goto NAME | camera N
     // (drag: the value set mid-drag, so the next frame renders the preview and the one after the full frame)
     // Throws gi::Error for an unknown action.
     void runAction(const std::string& action);
@@ -171,6 +171,12 @@ private:
     // A successful load or save: the file's state, a fresh history, no stale errors.
     void settle(const std::string& label);
     void historyPanel();
+    // Cameras: the current view saved as a named bookmark in the preset, a jump to one, and a
+    // jump to one of the file's cameras (each an undoable edit).
+    void addBookmark(const std::string& name);
+    void jumpTo(const CameraBookmark& view);
+    void takeFileCamera(size_t index);
+    std::string mBookmarkName;  // the name field beside "Add view"
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
     // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
     void installScene(Preset& p, bool resetView);

@@ -14,6 +14,7 @@ inline const ImVec4 kWarningColor{1.0f, 0.8f, 0.35f, 1.0f};
 // Layout at first use: a left column for the preset, a right one for stats, the previewer and
 // the reference, and the middle of the window left free for the viewport.
 inline constexpr float kMargin = 8.0f, kLeftWidth = 330.0f, kRightWidth = 340.0f, kStatsHeight = 300.0f;
+inline constexpr float kMaxFlyStepSeconds = 0.1f;  // the most flight one frame applies, however slow it was
 inline constexpr float kMinColumnWidth = 200.0f;   // a docked column can be dragged no narrower
 inline constexpr float kReferenceHeight = 205.0f;  // the Reference panel, at the bottom of the right column
 inline constexpr float kLabelWidth = 110.0f;       // room for the longest settings key beside its widget

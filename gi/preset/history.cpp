@@ -6,11 +6,11 @@ namespace gi {
 
 namespace {
 
-// The preset's keys as --list-settings names them, with their JSON text; lights apart.
+// The preset's keys as --list-settings names them, with their JSON text; lights and bookmarks apart.
 std::map<std::string, std::string> flatten(const json& j) {
     std::map<std::string, std::string> out;
     for (auto it = j.begin(); it != j.end(); ++it) {
-        if (it.key() == "lights") continue;
+        if (it.key() == "lights" || it.key() == "bookmarks") continue;
         if (it->is_object())
             for (auto f = it->begin(); f != it->end(); ++f) out[it.key() + "." + f.key()] = f->dump();
         else
@@ -38,6 +38,8 @@ std::map<std::string, std::string> flattenPreset(const Preset& p) {
     if (!p.lightsFromScene)
         for (size_t i = 0; i < p.lights.size(); ++i)
             for (auto& [key, value] : flatten(j["lights"][i])) out["lights." + std::to_string(i) + "." + key] = value;
+    for (size_t i = 0; i < p.bookmarks.size(); ++i)
+        for (auto& [key, value] : flatten(j["bookmarks"][i])) out["bookmarks." + std::to_string(i) + "." + key] = value;
     return out;
 }
 
@@ -58,6 +60,12 @@ std::vector<PresetChange> presetDiff(const Preset& before, const Preset& after) 
             if (i < after.lights.size()) lb = flatten(b["lights"][i]);
             diffMaps(la, lb, "lights." + std::to_string(i) + ".", out);
         }
+    }
+    if (before.bookmarks.size() != after.bookmarks.size()) {
+        out.push_back({"bookmarks", std::to_string(before.bookmarks.size()) + " views", std::to_string(after.bookmarks.size()) + " views"});
+    } else {
+        for (size_t i = 0; i < after.bookmarks.size(); ++i)
+            diffMaps(flatten(a["bookmarks"][i]), flatten(b["bookmarks"][i]), "bookmarks." + std::to_string(i) + ".", out);
     }
     return out;
 }

@@ -19,7 +19,7 @@ std::string sectionPrefix() {
 
 std::vector<std::string> topLevelKeys() {
     std::vector<std::string> keys = fieldKeys<PresetHeader>("");
-    keys.insert(keys.end(), {"schemaVersion", "lights"});
+    keys.insert(keys.end(), {"schemaVersion", "lights", "bookmarks"});
     Preset p;
     p.forEachSection([&](auto& s) { keys.emplace_back(std::decay_t<decltype(s)>::kSection); });
     return keys;
@@ -67,6 +67,11 @@ nlohmann::ordered_json presetToSavedJson(const Preset& p) {
         for (const auto& l : p.lights) lights.push_back(changedFields(l, light));
         j["lights"] = lights;
     }
+    if (!p.bookmarks.empty()) {
+        nlohmann::ordered_json bookmarks = nlohmann::ordered_json::array();
+        for (const auto& b : p.bookmarks) bookmarks.push_back(nlohmann::ordered_json::parse(toJson(b).dump()));
+        j["bookmarks"] = bookmarks;
+    }
     return j;
 }
 
@@ -79,6 +84,11 @@ json presetToJson(const Preset& p) {
         json lights = json::array();
         for (const auto& l : p.lights) lights.push_back(toJson(l));
         j["lights"] = lights;
+    }
+    if (!p.bookmarks.empty()) {
+        json bookmarks = json::array();
+        for (const auto& b : p.bookmarks) bookmarks.push_back(toJson(b));
+        j["bookmarks"] = bookmarks;
     }
     return j;
 }
@@ -137,6 +147,15 @@ Preset presetFromJson(const json& j, const std::string& context) {
             LightSettings l;
             fromJson(l, (*it)[i], context, "lights." + std::to_string(i) + ".");
             p.lights.push_back(l);
+        }
+    }
+    if (auto it = j.find("bookmarks"); it != j.end()) {
+        if (!it->is_array()) throw Error(detail::where(context, "bookmarks") + ": expected an array of views");
+        if (it->size() > 256) throw Error(detail::where(context, "bookmarks") + ": more than 256 views");
+        for (size_t i = 0; i < it->size(); ++i) {
+            CameraBookmark b;
+            fromJson(b, (*it)[i], context, "bookmarks." + std::to_string(i) + ".");
+            p.bookmarks.push_back(b);
         }
     }
     return p;

@@ -52,6 +52,7 @@ struct Preset : FrameSections {
     CameraSettings camera;
     std::vector<LightSettings> lights;  // used when lightsFromScene is false
     bool lightsFromScene = true;        // no "lights" key: take the scene's own lights
+    std::vector<CameraBookmark> bookmarks;  // named views ("bookmarks"; written only when there are some)
     ReferenceSettings reference;
     QualitySettings quality;
     std::filesystem::path folder;       // folder of the file it came from (asset search path)

@@ -676,6 +676,8 @@ private:
             mScene.warnings.push_back("camera " + std::to_string(index) + " is orthographic; shown as perspective");
         }
         mScene.cameras.push_back(cam);
+        mScene.cameraNames.resize(mScene.cameras.size() - 1);
+        mScene.cameraNames.push_back(!c.name.empty() ? c.name : mModel.nodes[size_t(node)].name);
     }
 
     void addLight(int node, int index, const glm::mat4& world) {

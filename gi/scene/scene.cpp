@@ -185,7 +185,10 @@ Scene loadScene(const std::string& scene, const std::filesystem::path& presetFol
     if (isBuiltinScene(scene)) return makeBuiltinScene(scene);
     if (scene.empty()) throw Error("key 'scene': empty (a built-in scene name or a glTF file path)");
     Scene s = loadGLTF(resolveAsset(scene, presetFolder), memoryBudgetMB);
-    if (s.cameras.empty()) s.cameras.push_back(frameBounds(s.bounds));
+    if (s.cameras.empty()) {
+        s.cameras.push_back(frameBounds(s.bounds));
+        s.cameraNames = {"framing the scene (the file has no camera)"};
+    }
     return s;
 }
 
@@ -196,7 +199,9 @@ CameraSettings frameBounds(const Bounds& b) {
     c.fovY = 40.0f;
     float dist = radius / std::sin(glm::radians(c.fovY * 0.5f));
     c.eye = c.target + glm::normalize(glm::vec3(0.6f, 0.45f, 1.0f)) * dist;
-    c.near = std::max(dist - radius, dist * 1e-3f) * 0.5f;
+    // Near is fitted to the scene's size, not to the distance: walking into the scene (a closed
+    // room framed from outside) must not clip its walls.
+    c.near = radius * 2e-3f;
     c.far = (dist + radius) * 1.5f;
     return c;
 }

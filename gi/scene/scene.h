@@ -122,6 +122,11 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<CameraSettings> cameras;  // the file's cameras (eye/target/fov), in file order
+    std::vector<std::string> cameraNames; // their names (the camera's, else its node's); may be shorter
+    // The camera's name as the editor lists it: its own, else "camera N".
+    std::string cameraName(size_t i) const {
+        return i < cameraNames.size() && !cameraNames[i].empty() ? cameraNames[i] : "camera " + std::to_string(i);
+    }
     std::vector<LightSettings> lights;    // the file's or the built-in scene's punctual lights
     std::vector<Emitter> emitters;        // emissive surfaces as area lights (finalize builds them)
     std::vector<int> triangleEmitter;     // per triangle: its emitter, -1 for none

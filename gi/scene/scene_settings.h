@@ -29,6 +29,23 @@ struct CameraSettings {
     }
 };
 
+// A named view saved in the preset (the editor's Camera section: add, name, jump).
+struct CameraBookmark {
+    static constexpr std::string_view kSection = "bookmarks";
+    std::string name = "view";          // what the list shows
+    glm::vec3 eye{0.0f, 1.0f, 3.4f};    // world position of the eye
+    glm::vec3 target{0.0f, 1.0f, 0.0f}; // world point the camera looks at
+    float fovY = 40.0f;                 // vertical field of view, degrees, 1..170
+
+    template <class V>
+    void visit(V&& v) {
+        v(name, {"name", "Name of the view", "", 0, 0});
+        v(eye, {"eye", "Eye position in world space", "m", -1e6, 1e6});
+        v(target, {"target", "Point the camera looks at", "m", -1e6, 1e6});
+        v(fovY, {"fovY", "Vertical field of view", "deg", 1, 170});
+    }
+};
+
 // Area lights are the scene's emissive surfaces (gi/scene/scene.h Emitter), one light per
 // emitter: the scene lists them beside its punctual lights, and a preset names them by index to
 // switch them off, tint or scale them. Their shape, position and direction come from the scene.

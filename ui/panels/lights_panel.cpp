@@ -3,12 +3,15 @@
 #include "ui/editor.h"
 
 #include "gi/preset/history.h"
+#include "gi/scene/camera.h"
 #include "gi/scene/emitters.h"
 
 #include "ui/panel_util.h"
 #include "ui/settings_panel.h"
 
 #include <imgui.h>
+
+#include <cstdio>
 
 namespace fs = std::filesystem;
 
@@ -26,7 +29,67 @@ uint8_t Editor::cameraTools() {
         cost |= uint8_t(Cost::Uniform);
     }
     hintText("viewport: right drag to look, WASD/QE to move, Shift: faster");
+
+    // The file's cameras by name.
+    if (!mScene.cameras.empty()) {
+        std::string current = "jump to a file camera";
+        if (ImGui::BeginCombo("file cameras", current.c_str())) {
+            for (size_t i = 0; i < mScene.cameras.size(); ++i)
+                if (ImGui::Selectable((std::to_string(i) + ": " + mScene.cameraName(i)).c_str())) takeFileCamera(i);
+            ImGui::EndCombo();
+        }
+    }
+    // Views saved in the preset.
+    ImGui::TextUnformatted("views (saved in the preset)");
+    int removed = -1;
+    for (size_t i = 0; i < mPreset.bookmarks.size(); ++i) {
+        ImGui::PushID(int(i));
+        if (ImGui::SmallButton("x")) removed = int(i);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("remove this view");
+        ImGui::SameLine();
+        if (ImGui::Selectable(mPreset.bookmarks[i].name.c_str())) jumpTo(mPreset.bookmarks[i]);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("jump to this view");
+        ImGui::PopID();
+    }
+    if (removed >= 0) {
+        mPreset.bookmarks.erase(mPreset.bookmarks.begin() + removed);
+        apply(uint8_t(Cost::Uniform));
+    }
+    if (mBookmarkName.empty()) mBookmarkName = "view " + std::to_string(mPreset.bookmarks.size() + 1);
+    char name[64];
+    std::snprintf(name, sizeof name, "%s", mBookmarkName.c_str());
+    if (ImGui::InputText("##viewName", name, sizeof name)) mBookmarkName = name;
+    ImGui::SameLine();
+    if (ImGui::Button("Add view")) {
+        addBookmark(mBookmarkName);
+        mBookmarkName.clear();
+    }
     return cost;
+}
+
+void Editor::addBookmark(const std::string& name) {
+    CameraBookmark b;
+    b.name = name.empty() ? "view " + std::to_string(mPreset.bookmarks.size() + 1) : name;
+    b.eye = mPreset.camera.eye;
+    b.target = mPreset.camera.target;
+    b.fovY = mPreset.camera.fovY;
+    mPreset.bookmarks.push_back(b);
+    apply(uint8_t(Cost::Uniform));
+}
+
+void Editor::jumpTo(const CameraBookmark& view) {
+    mPreset.camera.eye = view.eye;
+    mPreset.camera.target = view.target;
+    mPreset.camera.fovY = view.fovY;
+    mPreset.camera.sceneCamera = -1;
+    apply(uint8_t(Cost::Uniform));
+}
+
+void Editor::takeFileCamera(size_t index) {
+    GI_ASSERT(index < mScene.cameras.size(), "a file camera the scene has");
+    takeSceneCamera(mPreset.camera, mScene.cameras[index]);
+    mPreset.camera.sceneCamera = -1;
+    apply(uint8_t(Cost::Uniform));
 }
 
 uint8_t Editor::lightsPanel() {
