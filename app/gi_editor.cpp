@@ -125,7 +125,11 @@ int run(int argc, char** argv) {
             giFrames.push_back({{"ms", gi->ms}, {"width", gi->width}, {"height", gi->height}, {"uiFrame", frame}});
         }
         if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(frameDelayMs));
+        // A screenshot the editor asked for: the scene before the panels are drawn, then the window.
+        std::vector<uint8_t> scene;
+        if (editor.screenshotRequest()) scene = window.readBackBuffer(width, height);
         window.renderUI();
+        if (editor.screenshotRequest()) editor.writeScreenshot(scene, window.readBackBuffer(width, height), width, height);
         bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd && seconds == 0.0);
         if (seconds > 0.0 && std::chrono::duration<double>(now - start).count() >= seconds && (scriptFile.empty() || scriptEnd > 0))
             done = true;

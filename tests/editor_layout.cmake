@@ -1,12 +1,13 @@
 # The docked layout under Xvfb (issue 14 item 3): the panels stand in two columns at the window's
 # sides and the scene is drawn between them; after the window is resized the right column moves
-# with the window's edge and the viewport takes the new room. The user's layout file sets the
+# with the window's edge and the viewport takes the new room. The help window opens, and the
+# screenshot action writes the window and the viewport. The user's layout file sets the
 # column widths, the previewers shown and the drag preview at start and is written back at exit.
 # -DEDITOR, -DCHECKER and -DWORK (a scratch folder) come from tests/CMakeLists.txt.
 include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 file(WRITE ${WORK}/layout.json
   "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2}\n")
-file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\n")
+file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
 execute_process(
   COMMAND ${XVFB_RUN} -a -s "-screen 0 1400x900x24" ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
           --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json --screenshot ${WORK}/resized.png
@@ -32,6 +33,18 @@ message("${out2}${err2}")
 if(NOT rc2 EQUAL 0)
   message(FATAL_ERROR "screenshot check failed")
 endif()
+# The screenshot action (F12's): the window, and the viewport alone (the scene between the columns).
+foreach(part "window 1200 700" "viewport 520 700")
+  separate_arguments(args UNIX_COMMAND "${part}")
+  list(GET args 0 name)
+  list(GET args 1 w)
+  list(GET args 2 h)
+  execute_process(COMMAND ${CHECKER} ${WORK}/shot-${name}.png ${w} ${h} RESULT_VARIABLE rc3 OUTPUT_VARIABLE out3 ERROR_VARIABLE err3)
+  message("${out3}${err3}")
+  if(NOT rc3 EQUAL 0)
+    message(FATAL_ERROR "the ${name} screenshot is missing or wrong (expected ${w}x${h}, not blank)")
+  endif()
+endforeach()
 file(READ ${WORK}/layout.json saved)
 string(JSON savedLeft GET "${saved}" leftWidth)
 string(JSON savedPreview GET "${saved}" dragPreview)

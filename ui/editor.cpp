@@ -1,5 +1,6 @@
 #include "ui/editor.h"
 
+#include "gi/render/image_io.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <type_traits>
 
 namespace fs = std::filesystem;
@@ -109,6 +111,69 @@ void Editor::saveLayout() const {
     writeFileAtomic(mLayoutFile, j.dump(2) + "\n");
 }
 
+void Editor::requestScreenshot() {
+    char name[64];
+    std::time_t now = std::time(nullptr);
+    std::strftime(name, sizeof name, "gi-workbench-%Y%m%d-%H%M%S", std::localtime(&now));
+    mScreenshotRequest = fs::current_path() / name;
+}
+
+void Editor::writeScreenshot(const std::vector<uint8_t>& scene, const std::vector<uint8_t>& window, int width, int height) {
+    if (!mScreenshotRequest) return;
+    const std::string base = mScreenshotRequest->string();
+    mScreenshotRequest.reset();
+    try {
+        writePNG(base + "-window.png", width, height, window);
+        // The viewport's rectangle of the scene read (rows bottom first, as GL gives them).
+        const int x0 = std::clamp(mViewport.x, 0, width), w = std::clamp(mViewport.width, 0, width - x0);
+        const int h = std::min(mViewport.height, height);
+        std::vector<uint8_t> crop(size_t(w) * size_t(h) * 4);
+        for (int y = 0; y < h; ++y)
+            std::copy_n(scene.begin() + (size_t(y) * size_t(width) + size_t(x0)) * 4, size_t(w) * 4, crop.begin() + size_t(y) * size_t(w) * 4);
+        writePNG(base + "-viewport.png", w, h, crop);
+        mPresetStatus = "screenshot " + base + "-window.png and -viewport.png";
+    } catch (const std::exception& e) {
+        mPresetError = std::string("screenshot: ") + e.what();
+    }
+}
+
+void Editor::helpWindow() {
+    if (!mShowHelp) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowBgAlpha(1.0f);  // over the panels: their text must not show through
+    if (ImGui::Begin("Help: shortcuts and mouse", &mShowHelp, ImGuiWindowFlags_AlwaysAutoResize)) {
+        static constexpr const char* kRows[][2] = {
+            {"F1", "this window"},
+            {"F12", "screenshot: the window and the viewport as PNGs in the current folder"},
+            {"P", "pause or resume the GI (the last image stays)"},
+            {"Ctrl+Z", "undo the last settings change (a drag, a typed value or a camera flight)"},
+            {"Ctrl+Shift+Z, Ctrl+Y", "redo"},
+            {"right drag in the viewport", "look around"},
+            {"W A S D, Q E", "fly forward, left, back, right, down, up (hold Shift: 4x faster)"},
+            {"left click in the viewport", "pick the pixel the overlays point at"},
+            {"right click a value", "reset it to its default, or revert it to the file"},
+            {"double click a preset", "open it"},
+            {"Ctrl+click a slider", "type a value"},
+            {"wheel / drag on the buffer preview", "zoom / pan"},
+            {"Space (Reference in toggle view)", "hold to see the reference"},
+            {"drag the split line", "move the Reference split"},
+            {"drag a column's inner edge", "widen or narrow the panels (kept per user)"},
+        };
+        if (ImGui::BeginTable("help", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH)) {
+            for (const auto& row : kRows) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(row[0]);
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(row[1]);
+            }
+            ImGui::EndTable();
+        }
+    }
+    ImGui::End();
+}
+
 std::string Editor::title() const {
     std::string file = mPresetPath.empty() ? "untitled" : mPresetPath.filename().string();
     return "GI Workbench - " + file + (mDirty ? " *" : "");
@@ -141,6 +206,10 @@ void Editor::frame(int width, int height, float dt) {
     // P pauses and resumes the GI work, unless a text field takes the keys.
     if (!io.WantTextInput && !io.KeyCtrl && ImGui::IsKeyPressed('P', false))  // GLFW_KEY_P: 1.86 indexes keys by GLFW code
         mPaused = !mPaused;
+
+    // F1: help; F12: a screenshot of the window and of the viewport, named after the time.
+    if (ImGui::IsKeyPressed(290 /* GLFW_KEY_F1 */, false)) mShowHelp = !mShowHelp;
+    if (ImGui::IsKeyPressed(301 /* GLFW_KEY_F12 */, false)) requestScreenshot();
 
     mRendered.reset();
     // The panels dock to the window's sides (drawPanels); the scene fills what lies between.
@@ -265,6 +334,11 @@ void Editor::runAction(const std::string& action) {
         int i = std::atoi(arg.c_str());
         if (i < 0 || i >= int(mScene.cameras.size())) throw Error("script: the scene has no camera " + arg);
         takeFileCamera(size_t(i));
+    } else if (verb == "screenshot") {
+        if (arg.empty()) throw Error("script: screenshot takes a path (PATH-window.png and PATH-viewport.png are written)");
+        mScreenshotRequest = fs::path(arg);
+    } else if (verb == "help") {
+        mShowHelp = !mShowHelp;
     } else if (verb == "wait") {
         // Nothing: a frame as a user who is looking at the picture.
     } else if (verb == "pause" || verb == "resume") {
@@ -580,6 +654,7 @@ void Editor::drawPanels() {
 
     for (auto& [section, p] : mPanels) p->drawWindows(ctx);
     previewerWindows(frame, previewers);
+    helpWindow();
     apply(cost);
 }
 

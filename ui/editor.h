@@ -68,7 +68,8 @@ public:
 
     // One scripted action, through the same functions the panels and shortcuts call:
     //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
-    //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT | bookmark NAME | goto NAME | camera N
+    //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT | bookmark NAME | goto NAME | camera N |
+    //   screenshot PATH (PATH-window.png and PATH-viewport.png) | help
     // (drag: the value set mid-drag, so the next frame renders the preview and the one after the full frame)
     // Throws gi::Error for an unknown action.
     void runAction(const std::string& action);
@@ -86,6 +87,14 @@ public:
     // Writes the layout to EditorOptions::layoutFile (atomically); nothing when there is none.
     // Throws gi::Error when it cannot be written.
     void saveLayout() const;
+    // F12 (or the Stats panel's button, or the script's screenshot action) asks for the window and
+    // the viewport as PNGs: the caller reads the back buffer before and after the panels are drawn
+    // and hands the pixels to writeScreenshot.
+    std::optional<std::filesystem::path> screenshotRequest() const { return mScreenshotRequest; }
+    ViewportRect viewport() const { return mViewport; }
+    // Writes PATH-window.png (the whole window) and PATH-viewport.png (the scene between the columns,
+    // without the panels); `scene` is read before the panels were drawn, `window` after.
+    void writeScreenshot(const std::vector<uint8_t>& scene, const std::vector<uint8_t>& window, int width, int height);
     // The frame that is shown is of the current settings at full size, and nothing waits for the
     // renderer: what a screenshot waits for.
     bool giSettled() const { return mPaused || mRenderedKey == mLiveKey; }
@@ -176,7 +185,11 @@ private:
     void addBookmark(const std::string& name);
     void jumpTo(const CameraBookmark& view);
     void takeFileCamera(size_t index);
-    std::string mBookmarkName;  // the name field beside "Add view"
+    std::string mBookmarkName;
+    std::optional<std::filesystem::path> mScreenshotRequest;  // the PNGs' path without "-window.png"
+    bool mShowHelp = false;     // the help window: every shortcut and mouse action
+    void helpWindow();
+    void requestScreenshot();  // PNGs named after the time, in the current folder  // the name field beside "Add view"
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
     // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
     void installScene(Preset& p, bool resetView);

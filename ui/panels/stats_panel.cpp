@@ -17,6 +17,9 @@ void Editor::statsPanel() {
     // The GI renders only when its image would change: say what the picture on screen is.
     const char* state = mPaused ? "paused" : giSettled() ? "up to date" : mRenderSize != glm::ivec2(mWidth, mHeight) ? "preview" : "rendering";
     ImGui::Text("GI %.1f ms at %dx%d, %s", mRenderMs, mRenderSize.x, mRenderSize.y, state);
+    if (ImGui::SmallButton("Help (F1)")) mShowHelp = !mShowHelp;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Screenshot (F12)")) requestScreenshot();
     ImGui::Checkbox("pause GI (P)", &mPaused);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("stop rendering; the last image stays and settings can still be edited");
     ImGui::SameLine();
