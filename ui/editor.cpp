@@ -479,7 +479,9 @@ void Editor::renderViewport(bool interacting) {
         mPreviewer.drawViewport(mRenderer, mViewport);
         PanelContext ctx = panelContext();
         for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, mViewport);
-        mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer);
+        // The reference takes every core while the GI has nothing to render.
+        mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer,
+                          !mRendered && giSettled() && !interacting);
         mReference.drawViewport(mViewport);
     }
 }

@@ -12,6 +12,8 @@
 
 namespace gi::ui {
 
+int ReferenceJob::allThreads() { return std::max(1, int(std::thread::hardware_concurrency())); }
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -78,8 +80,10 @@ void ReferenceJob::run() {
             }
         }
 
-        // One slot fewer than the machine has: the UI thread keeps a core.
-        tbb::task_arena arena(std::max(1, int(std::thread::hardware_concurrency()) - 1));
+        // One slot fewer than the machine has, so the UI thread keeps a core, unless the editor
+        // says it is idle: then every core (chosen again before each pass).
+        tbb::task_arena spared(std::max(1, allThreads() - 1)), all(allThreads());
+        tbb::task_arena& arena = spared;
         std::shared_ptr<const PathTracer> tracer = this->tracer();
         if (!tracer) {
             arena.execute([&] { tracer = std::make_shared<const PathTracer>(*mScene); });
@@ -97,7 +101,7 @@ void ReferenceJob::run() {
         while (s.samplesDone < mSettings.spp && !mCancel) {
             int count = std::min(pass, mSettings.spp - s.samplesDone);
             bool complete = false;
-            arena.execute([&] { complete = tracer->trace(mFrame, mSettings, s.samplesDone, count, sum, &mCancel); });
+            (mAllCores ? all : spared).execute([&] { complete = tracer->trace(mFrame, mSettings, s.samplesDone, count, sum, &mCancel); });
             if (!complete) break;
             s.samplesDone += count;
             pass = std::min(pass * 2, kMaxPassSamples);

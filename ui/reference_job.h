@@ -5,7 +5,8 @@
 //
 // Threads: the job owns one std::thread, and the path tracer's oneTBB work runs in a task arena
 // of hardware_concurrency - 1 slots (at least one), so one core stays free for the UI thread
-// (which also drives llvmpipe). The worker only touches CPU data; GL stays on the main thread.
+// (which also drives llvmpipe), or of every core while the editor says its GI is idle
+// (setAllCores, read before each pass). The worker only touches CPU data; GL stays on the main thread.
 //
 // Cancelling: cancel() sets a flag the tracer checks before each 16x16 tile, so tracing stops
 // within one tile; building the BVH cannot be interrupted. cancel() does not wait: the editor
@@ -54,6 +55,11 @@ public:
     ReferenceJob& operator=(const ReferenceJob&) = delete;
 
     void cancel() { mCancel = true; }
+    // Every core for the passes from now on (the editor is idle: no GI frame to render), or all
+    // but one (the UI thread drives llvmpipe).
+    void setAllCores(bool all) { mAllCores = all; }
+    int threads() const { return mAllCores ? allThreads() : allThreads() > 1 ? allThreads() - 1 : 1; }
+    static int allThreads();
     bool done() const { return mDone.load(); }
     uint64_t version() const { return mVersion.load(); }
     std::shared_ptr<const ReferenceSnapshot> snapshot() const;
@@ -70,6 +76,7 @@ private:
     std::atomic<uint64_t> mVersion{0};
     mutable std::mutex mMutex;
     std::shared_ptr<const ReferenceSnapshot> mSnapshot;
+    std::atomic<bool> mAllCores{false};
     std::thread mThread;  // last: starts after every other member is ready
 
     void run();

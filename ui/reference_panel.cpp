@@ -15,6 +15,7 @@ namespace gi::ui {
 namespace {
 
 constexpr float kSplitGrabPixels = 6.0f;  // how near the split line a press grabs it
+constexpr double kScoreMinSSIM = 0.99;    // the seed score is shown from this SSIM up (10 x 0.99^1000 = 4e-4)
 
 constexpr std::pair<ReferenceView, const char*> kViewNames[] = {{ReferenceView::Live, "live"},
                                                                 {ReferenceView::Reference, "reference"},
@@ -80,7 +81,7 @@ ReferencePanel::~ReferencePanel() {
 }
 
 void ReferencePanel::update(const Scene& scene, uint64_t sceneGeneration, uint64_t liveGeneration,
-                            const FrameSettings& fs, const ReferenceSettings& rs, const Renderer& renderer) {
+                            const FrameSettings& fs, const ReferenceSettings& rs, const Renderer& renderer, bool giIdle) {
     std::erase_if(mRetired, [](const std::unique_ptr<ReferenceJob>& job) { return job->done(); });
     mLiveGeneration = liveGeneration;
     mToneMap = fs.toneMap;
@@ -99,6 +100,7 @@ void ReferencePanel::update(const Scene& scene, uint64_t sceneGeneration, uint64
     bool inputsSettled = secondsBetween(mPendingSince, now) >= kSettleSeconds;
     if (!mJob || mRestartRequested || (mStale && inputsSettled)) restart(scene, sceneGeneration, key, fs, rs);
 
+    if (mJob) mJob->setAllCores(giIdle);
     pickUpSnapshot();
     updateMetrics(renderer);
 }
@@ -306,7 +308,8 @@ void ReferencePanel::draw() {
     } else if (s->state == ReferenceSnapshot::State::Finished) {
         hint(s->fromCache ? "finished (read from the cache)" : "finished");
     } else {
-        hint("tracing on " + std::to_string(std::max(1, int(std::thread::hardware_concurrency()) - 1)) + " thread(s)");
+        hint("tracing on " + std::to_string(mJob ? mJob->threads() : 1) + " thread(s)" +
+             (mJob && mJob->threads() == ReferenceJob::allThreads() ? " (every core: the GI is idle)" : ""));
     }
     if (s && !s->warning.empty()) coloredText(kWarningColor, s->warning);
 
@@ -336,21 +339,30 @@ void ReferencePanel::draw() {
 
     // Numbers of an older view stay in place, greyed, until the new reference has a pass.
     if (mStale) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    if (mHaveMetrics && ImGui::BeginTable("metrics", 4, ImGuiTableFlags_BordersInnerV)) {
-        for (const char* name : {"SSIM", "score", "RMSE", "PSNR"}) ImGui::TableSetupColumn(name);
+    // The seed's score, 10 SSIM^1000, is below 0.5 for any SSIM under 0.997: it says something
+    // only for near-identical images, so it is shown only there.
+    const bool showScore = mHaveMetrics && mMetrics.ssim >= kScoreMinSSIM;
+    if (mHaveMetrics) {
+        ImGui::SetWindowFontScale(1.4f);
+        ImGui::Text("SSIM %.4f", mMetrics.ssim);
+        ImGui::SetWindowFontScale(1.0f);
+    }
+    if (mHaveMetrics && ImGui::BeginTable("metrics", showScore ? 3 : 2, ImGuiTableFlags_BordersInnerV)) {
+        if (showScore) ImGui::TableSetupColumn("seed score");
+        for (const char* name : {"RMSE", "PSNR"}) ImGui::TableSetupColumn(name);
         ImGui::TableHeadersRow();
         ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::Text("%.4f", mMetrics.ssim);
-        ImGui::TableNextColumn();
-        ImGui::Text("%.3g", mMetrics.score);
+        if (showScore) {
+            ImGui::TableNextColumn();
+            ImGui::Text("%.3g", mMetrics.score);
+        }
         ImGui::TableNextColumn();
         ImGui::Text("%.4f", mMetrics.rmse);
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(formatPSNR(mMetrics.psnr).c_str());
         ImGui::EndTable();
     } else if (!mStale && !(s && s->state == ReferenceSnapshot::State::Failed)) {
-        hint("SSIM and score: after the first pass");
+        hint("SSIM: after the first pass");
     }
     if (mStale) ImGui::PopStyleColor();
     if (!mTaskError.empty()) coloredText(kErrorColor, mTaskError);

@@ -53,9 +53,10 @@ public:
     // Once per frame, after the live image is rendered: restarts the job when its inputs changed
     // and have settled, picks up new snapshots, and starts or collects the metrics.
     // `sceneGeneration` changes whenever another scene is installed; `liveGeneration` whenever
-    // anything that changes the live image does.
+    // anything that changes the live image does. `giIdle`: the editor has no GI frame to render,
+    // so the tracer's next passes take every core.
     void update(const Scene& scene, uint64_t sceneGeneration, uint64_t liveGeneration, const FrameSettings& fs,
-                const ReferenceSettings& rs, const Renderer& renderer);
+                const ReferenceSettings& rs, const Renderer& renderer, bool giIdle);
     // Draws the chosen view over the live image already in the default framebuffer.
     void drawViewport(const ViewportRect& viewport);
     // The panel's widgets, into the current ImGui window.
