@@ -83,10 +83,9 @@ void ReferenceJob::run() {
         // One slot fewer than the machine has, so the UI thread keeps a core, unless the editor
         // says it is idle: then every core (chosen again before each pass).
         tbb::task_arena spared(std::max(1, allThreads() - 1)), all(allThreads());
-        tbb::task_arena& arena = spared;
         std::shared_ptr<const PathTracer> tracer = this->tracer();
         if (!tracer) {
-            arena.execute([&] { tracer = std::make_shared<const PathTracer>(*mScene); });
+            spared.execute([&] { tracer = std::make_shared<const PathTracer>(*mScene); });
             std::lock_guard lock(mMutex);
             mTracer = tracer;
         }
