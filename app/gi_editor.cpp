@@ -70,7 +70,7 @@ int run(int argc, char** argv) {
         ->check(CLI::ExistingFile);
     app.add_option("--ui-stats", uiStats,
                    "At exit, write this JSON file: uiFrameMs (each UI frame), giFrameMs (each GI frame the renderer made), giFrames "
-                   "(each GI frame's ms, width, height and the UI frame it was made in) and "
+                   "(each GI frame's ms, width, height, the UI frame that started it, startUIFrame, and the one that took it, uiFrame) and "
                    "editor (title, dirty, errors, status, undo history, the preset as it would be saved)");
     try {
         app.parse(argc, argv);
@@ -98,16 +98,22 @@ int run(int argc, char** argv) {
 
     gi::ui::Window window(options.width, options.height, "GI Workbench");
     options.resizeWindow = [&window](int w, int h) { window.setSize(w, h); };
-    gi::ui::Editor editor(options);
+    // The GI renders on its own thread, in a context of its own (ui/gi_thread.h); the editor is
+    // made in that context, and each UI frame hands it back and forth.
+    gi::ui::GIThread gi([&window](bool current) { window.bindGI(current); }, [&window] { window.bindUI(); });
+    gi.acquire();
+    gi::ui::Editor editor(options, gi);
+    gi.release();
     std::string title;
     const bool waitForReference = !screenshot.empty() && !options.reference.empty() && referenceTimeout > 0.0;
     std::chrono::steady_clock::time_point waitStart;
-    bool timedOut = false;
+    bool timedOut = false, waitingForReference = false;
     auto last = std::chrono::steady_clock::now();
     std::vector<float> uiFrameMs, giFrameMs;
     gi::json giFrames = gi::json::array();
     const auto start = std::chrono::steady_clock::now();
-    int settleFrames = 0;  // frames waited, at the end, for the GI to catch up
+    std::chrono::steady_clock::time_point settleStart;  // when the end began to wait for the GI to catch up
+    bool settling = false;
     int scriptEnd = 0;  // with a script and no --frames: the frame after the last action
     for (int frame = 1; !window.shouldClose(); ++frame) {
         auto now = std::chrono::steady_clock::now();
@@ -122,9 +128,11 @@ int run(int argc, char** argv) {
         editor.frame(width, height, dt);
         if (auto gi = editor.renderedFrame()) {
             giFrameMs.push_back(gi->ms);
-            giFrames.push_back({{"ms", gi->ms}, {"width", gi->width}, {"height", gi->height}, {"uiFrame", frame}});
+            giFrames.push_back({{"ms", gi->ms}, {"width", gi->width}, {"height", gi->height}, {"uiFrame", frame}, {"startUIFrame", gi->startUIFrame}});
         }
         if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(frameDelayMs));
+        // The last composed image under the panels (made in the GI context, finished there).
+        window.drawBackground(editor.compositeTexture(), editor.compositeWidth(), editor.compositeHeight());
         // A screenshot the editor asked for: the scene before the panels are drawn, then the window.
         std::vector<uint8_t> scene;
         if (editor.screenshotRequest()) scene = window.readBackBuffer(width, height);
@@ -133,13 +141,22 @@ int run(int argc, char** argv) {
         bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd && seconds == 0.0);
         if (seconds > 0.0 && std::chrono::duration<double>(now - start).count() >= seconds && (scriptFile.empty() || scriptEnd > 0))
             done = true;
-        // A screenshot shows the full frame of the final settings, not a drag's preview.
-        if (done && !screenshot.empty() && !editor.giSettled() && ++settleFrames < 100) {
-            window.swap();
-            continue;
+        // A screenshot shows the full frame of the final settings, not a drag's preview: the UI
+        // goes on, at a gentle pace, until the GI thread has it (for at most kSettleSeconds).
+        constexpr double kSettleSeconds = 600.0;
+        if (done && !screenshot.empty() && !editor.giSettled()) {
+            if (!settling) settleStart = std::chrono::steady_clock::now();
+            settling = true;
+            if (std::chrono::duration<double>(std::chrono::steady_clock::now() - settleStart).count() < kSettleSeconds) {
+                window.swap();
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                continue;
+            }
+            std::fprintf(stderr, "gi-editor: the GI did not finish within %.0f s; the screenshot shows what there is\n", kSettleSeconds);
         }
         if (done && waitForReference && !editor.referenceSettled()) {
-            if (frame == frames) waitStart = std::chrono::steady_clock::now();
+            if (!waitingForReference) waitStart = std::chrono::steady_clock::now();
+            waitingForReference = true;
             double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
             timedOut = waited > referenceTimeout;
             // Frames go on, slowly, so the tracer gets the cores llvmpipe would take.

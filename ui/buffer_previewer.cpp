@@ -26,13 +26,13 @@ const DebugView* BufferPreviewer::findView(const std::vector<DebugView>& views) 
     return nullptr;
 }
 
-bool BufferPreviewer::drawViewport(const Renderer& renderer, const ViewportRect& viewport) {
-    if (!mFill || viewport.width <= 0 || viewport.height <= 0) return false;
-    std::vector<DebugView> views = renderer.debugViews();
-    const DebugView* view = findView(views);
+bool BufferPreviewer::drawViewport(const Renderer* renderer, const ViewportRect& viewport) {
+    if (!mFill || viewport.width <= 0 || viewport.height <= 0 || !renderer) return false;
+    mViews = renderer->debugViews();
+    const DebugView* view = findView(mViews);
     if (!view) return false;
-    renderImage(renderer, *view, mViewport, viewport.width, viewport.height);
-    glBlitNamedFramebuffer(mViewport.fbo.id(), 0, 0, 0, viewport.width, viewport.height, viewport.x, 0, viewport.x + viewport.width,
+    renderImage(*renderer, *view, mViewport, viewport.width, viewport.height);
+    glBlitNamedFramebuffer(mViewport.fbo.id(), viewport.framebuffer, 0, 0, viewport.width, viewport.height, viewport.x, 0, viewport.x + viewport.width,
                            viewport.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     const ImGuiIO& io = ImGui::GetIO();
     if (!io.WantCaptureMouse && viewport.contains(io.MousePos) && view->target == GL_TEXTURE_2D) {
@@ -44,8 +44,9 @@ bool BufferPreviewer::drawViewport(const Renderer& renderer, const ViewportRect&
     return true;
 }
 
-void BufferPreviewer::draw(const Renderer& renderer) {
-    std::vector<DebugView> views = renderer.debugViews();
+void BufferPreviewer::draw(const Renderer* renderer) {
+    if (renderer) mViews = renderer->debugViews();
+    const std::vector<DebugView>& views = mViews;
     const DebugView* view = findView(views);
 
     if (ImGui::BeginCombo("view", mView.c_str())) {
@@ -77,7 +78,7 @@ void BufferPreviewer::draw(const Renderer& renderer) {
     float aspect = float(std::max(view->width, 1)) / float(std::max(view->height, 1));
     glm::vec2 size = avail.x / aspect <= avail.y ? glm::vec2(avail.x, avail.x / aspect) : glm::vec2(avail.y * aspect, avail.y);
     size = glm::max(glm::floor(size), glm::vec2(16.0f));
-    renderImage(renderer, *view, mPanel, int(size.x), int(size.y));
+    if (renderer) renderImage(*renderer, *view, mPanel, int(size.x), int(size.y));
 
     ImVec2 pos = ImGui::GetCursorScreenPos();
     ImGui::Image(ImTextureID(intptr_t(mPanel.image.id())), ImVec2(size.x, size.y), ImVec2(0, 1), ImVec2(1, 0));
@@ -92,6 +93,8 @@ void BufferPreviewer::draw(const Renderer& renderer) {
 
     if (!hovered) {
         ImGui::TextDisabled("%s: %dx%d", view->name.c_str(), view->width, view->height);
+    } else if (!renderer) {
+        ImGui::TextDisabled("readout once the GI frame in flight is done");
     } else if (view->target == GL_TEXTURE_CUBE_MAP) {
         ImGui::TextDisabled("no texel readout for cube maps");
     } else {

@@ -20,11 +20,12 @@ public:
     explicit BufferPreviewer(std::string view = "final") : mView(std::move(view)) {}
 
     // Draws the controls and the view into the current ImGui window, filling its content region.
-    void draw(const Renderer& renderer);
+    // A null renderer (the GI thread holds it): the controls, the last image, no readout.
+    void draw(const Renderer* renderer);
     // With "fill viewport" on: the view, at the viewport's size and with the same channel,
-    // exposure, zoom and pan, over the frame, and its texel readout by the mouse when it hovers
-    // the viewport. Returns whether it drew.
-    bool drawViewport(const Renderer& renderer, const ViewportRect& viewport);
+    // exposure, zoom and pan, into viewport.framebuffer, and its texel readout by the mouse when
+    // it hovers the viewport. Returns whether it drew. A null renderer: nothing (the last one stands).
+    bool drawViewport(const Renderer* renderer, const ViewportRect& viewport);
     bool fill() const { return mFill; }
     void setFill(bool fill) { mFill = fill; }
     const std::string& view() const { return mView; }
@@ -43,6 +44,7 @@ private:
         gl::Framebuffer fbo;
     };
     Target mPanel, mViewport;
+    std::vector<DebugView> mViews;  // the renderer's, as last read
 
     const DebugView* findView(const std::vector<DebugView>& views) const;
     void renderImage(const Renderer& renderer, const DebugView& view, Target& target, int width, int height);

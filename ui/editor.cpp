@@ -21,7 +21,10 @@ namespace fs = std::filesystem;
 namespace gi::ui {
 
 
-Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(options.width), mHeight(options.height) {
+Editor::Editor(const EditorOptions& options, GIThread& gi)
+    : mPreviewer(options.view), mGI(gi), mWidth(options.width), mHeight(options.height) {
+    mGI.acquire();  // the caller holds it already; members were made in it
+    mLive = true;
     for (const PassPanelEntry& e : passPanels()) mPanels.emplace_back(e.section, e.create(options));
     for (const std::string& name : options.previewers) mShowPreviewer[name] = true;
     mOpenLights = options.lightsPanel;
@@ -81,6 +84,11 @@ Editor::Editor(const EditorOptions& options) : mPreviewer(options.view), mWidth(
     const GLubyte* renderer = glGetString(GL_RENDERER);
     mGLRenderer = renderer ? reinterpret_cast<const char*>(renderer) : "unknown";
     scanFiles();
+}
+
+Editor::~Editor() {
+    // The frame in flight uses the renderer; every member is then deleted in the context it was made in.
+    mGI.acquire();
 }
 
 void Editor::loadLayout() {
@@ -212,6 +220,10 @@ void Editor::frame(int width, int height, float dt) {
     if (ImGui::IsKeyPressed(301 /* GLFW_KEY_F12 */, false)) requestScreenshot();
 
     mRendered.reset();
+    // Between GI frames this UI frame holds the GI context: it takes the finished frame and may use
+    // the renderer; otherwise the panels show what they last read of it.
+    mLive = mGI.tryAcquire();
+    if (mLive) collectResult();
     // The panels dock to the window's sides (drawPanels); the scene fills what lies between.
     const float minViewport = 0.25f * float(width);
     const float columns = mLeftWidth + mRightWidth;
@@ -222,14 +234,74 @@ void Editor::frame(int width, int height, float dt) {
     if (width > 0 && height > 0) renderViewport(mInteracting || cameraMoved);
     drawPanels();
     recordEdit(cameraMoved);
-    // A script acts from the second frame on, one action per frame, as a user would.
-    if (mFrames++ > 0 && mScriptNext < mScript.size()) {
+    // A script acts from the second frame on, one action per frame, each once the GI shows what
+    // the last one asked for, as a user would.
+    if (mFrames++ > 0 && mScriptNext < mScript.size() && giCaughtUp()) {
         runAction(mScript[mScriptNext++]);
         recordEdit(false);
     }
-    // The next frame renders a preview while this interaction goes on.
+    // A preview renders while this interaction goes on (a script's drag lasts until its next other action).
     mInteracting = ImGui::IsAnyItemActive() || cameraMoved || mScriptDrag;
-    mScriptDrag = false;
+    submitIfNeeded();
+}
+
+void Editor::collectResult() {
+    if (!mResult) return;
+    GIResult r = std::move(*mResult);
+    mResult.reset();
+    mSubmittedKey.clear();
+    if (r.error.empty()) {
+        mRenderMs = r.frame.ms;
+        mRenderSize = {r.frame.width, r.frame.height};
+        mRendered = r.frame;
+        mRenderedKey = r.key;
+        mGoodPreset = r.preset;
+    } else {
+        // Keep the last picture and go back to the settings that made it. The message stays
+        // until dismissed, since the restored settings render fine on the next frame.
+        mFrameError = r.error + " (previous settings restored)";
+        mFailedKey = r.key;
+        mRenderedKey.clear();
+        mPreset = mGoodPreset;
+        ++mLiveGeneration;
+    }
+    mPassStats = mRenderer.passStats();
+    mMemoryBytes = mRenderer.memoryBytes();
+    mPickPending = true;  // the focus pixel's surface, of the new frame
+}
+
+void Editor::submitIfNeeded() {
+    if (!mGI.held()) return;  // the GI thread is rendering
+    const int width = mWidth, height = mHeight;
+    const int divisor = mInteracting ? std::max(mPreviewDivisor, 1) : 1;
+    const int w = std::max(width / divisor, 1), h = std::max(height / divisor, 1);
+    mWantKey = liveKey(w, h);
+    if (mPaused || width <= 0 || height <= 0 || mWantKey == mRenderedKey || mWantKey == mFailedKey) {
+        mGI.release();
+        return;
+    }
+    FrameSettings fs;
+    try {
+        fs = frameSettings(mPreset, mScene, w, h);
+    } catch (const std::exception& e) {
+        mFrameError = e.what();
+        mFailedKey = mWantKey;
+        mGI.release();
+        return;
+    }
+    mSubmittedKey = mWantKey;
+    mGI.submit([this, fs = std::move(fs), key = mWantKey, preset = mPreset, w, h, started = mFrames] {
+        GIResult r{key, preset, {0.0f, w, h, started}, {}};
+        auto start = std::chrono::steady_clock::now();
+        try {
+            mRenderer.render(fs);
+            mRenderer.resolveTimings();  // the pass timers of this frame, for the Stats panel
+        } catch (const std::exception& e) {
+            r.error = e.what();
+        }
+        r.frame.ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+        mResult = std::move(r);
+    });
 }
 
 void Editor::recordEdit(bool cameraMoved) {
@@ -315,6 +387,7 @@ void Editor::settle(const std::string& label) {
 void Editor::runAction(const std::string& action) {
     auto space = action.find(' ');
     std::string verb = action.substr(0, space), arg = space == std::string::npos ? "" : action.substr(space + 1);
+    mScriptDrag = false;  // a drag lasts from its first drag action to the next other action
     if (verb == "set" || verb == "drag") {
         applySetting(mPreset, arg);
         apply(arg.rfind("scene=", 0) == 0 ? uint8_t(Cost::ReloadScene) : uint8_t(Cost::Uniform));
@@ -418,6 +491,7 @@ void Editor::installScene(Preset& p, bool resetView) {
     // Refuse a scene past the memory budget before uploading it (a prefilter past the time
     // budget is refused by the frame, so the preset still opens and its settings can be lowered).
     Renderer::checkMemoryBudget(frameSettings(p, scene, mWidth, mHeight), GPUScene::estimateBytes(scene));
+    mGI.acquire();  // a frame in flight finishes first; the rest of this UI frame holds the context
     mRenderer.setScene(scene);
     mScene = std::move(scene);
     mLoadedScene = p.header.scene;
@@ -439,50 +513,48 @@ void Editor::renderViewport(bool interacting) {
     try {
         // The panels and the reference see the full-size frame, whatever size the preview renders at.
         fs = frameSettings(mPreset, mScene, width, height);
-        mLiveKey = liveKey(width, height);
-        // While a drag or a flight goes on, a smaller frame keeps the picture moving; the full
-        // frame follows when it ends. Nothing renders when nothing the image depends on changed.
-        const int divisor = interacting ? std::max(mPreviewDivisor, 1) : 1;
-        const int w = std::max(width / divisor, 1), h = std::max(height / divisor, 1);
-        const std::string key = divisor == 1 ? mLiveKey : liveKey(w, h);
-        if (!mPaused && key != mRenderedKey) {
-            const FrameSettings renderFS = divisor == 1 ? fs : frameSettings(mPreset, mScene, w, h);
-            auto start = std::chrono::steady_clock::now();
-            mRenderedKey.clear();  // a frame that throws leaves no image of these settings
-            mRenderer.render(renderFS);
-            mRenderMs = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
-            mRenderSize = {w, h};
-            mRendered = GIFrame{mRenderMs, w, h};
-            mRenderedKey = key;
-            mGoodPreset = mPreset;
-        } else {
-            mRenderer.resolveTimings();  // the last GI frame finished long ago: its timings are ready
-        }
     } catch (const std::exception& e) {
-        // Keep the last picture and go back to the settings that made it. The message stays
-        // until dismissed, since the restored settings render fine on the next frame.
         mFrameError = std::string(e.what()) + " (previous settings restored)";
         mPreset = mGoodPreset;
         fs = frameSettings(mPreset, mScene, width, height);
         ++mLiveGeneration;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    const ImVec2 window = ImGui::GetIO().DisplaySize;
-    glViewport(0, 0, int(window.x), int(window.y));
-    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    if (mRenderer.width() > 0) {
-        // Attached every frame: a resized output texture may reuse the old one's name.
-        glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
-        glBlitNamedFramebuffer(mOutputFBO.id(), 0, 0, 0, mRenderer.width(), mRenderer.height(), mViewport.x, 0,
-                               mViewport.x + width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-        mPreviewer.drawViewport(mRenderer, mViewport);
-        PanelContext ctx = panelContext();
-        for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, mViewport);
-        // The reference takes every core while the GI has nothing to render.
-        mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer,
-                          !mRendered && giSettled() && !interacting);
-        mReference.drawViewport(mViewport);
+    mLiveKey = liveKey(width, height);
+    const bool giIdle = !mRendered && mLive && mRenderedKey == mLiveKey && !interacting;
+    if (mLive) {
+        // The window's background, in the GI context: its size, cleared, the GI image scaled into
+        // the viewport, then what may cover it there.
+        const ImVec2 window = ImGui::GetIO().DisplaySize;
+        const int cw = std::max(int(window.x), 1), ch = std::max(int(window.y), 1);
+        if (!mComposite || mComposite.width() != cw || mComposite.height() != ch) {
+            mComposite = gl::Texture::create2D(GL_RGBA8, cw, ch);
+            if (!mCompositeFBO) mCompositeFBO = gl::createFramebuffer();
+            glNamedFramebufferTexture(mCompositeFBO.id(), GL_COLOR_ATTACHMENT0, mComposite.id(), 0);
+        }
+        ViewportRect target = mViewport;
+        target.framebuffer = mCompositeFBO.id();
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+        glViewport(0, 0, cw, ch);
+        glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        if (mRenderer.width() > 0) {
+            // Attached every frame: a resized output texture may reuse the old one's name.
+            glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
+            glBlitNamedFramebuffer(mOutputFBO.id(), target.framebuffer, 0, 0, mRenderer.width(), mRenderer.height(), mViewport.x, 0,
+                                   mViewport.x + width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+            mPreviewer.drawViewport(&mRenderer, target);
+            PanelContext ctx = panelContext();
+            for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, target);
+            // The reference takes every core while the GI has nothing to render.
+            mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer, giIdle);
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+        mReference.drawViewport(target, true);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    } else {
+        // The composite stands; what is drawn with the panels (labels, a readout) still follows the mouse.
+        mPreviewer.drawViewport(nullptr, mViewport);
+        mReference.drawViewport(mViewport, false);
     }
 }
 
@@ -564,9 +636,12 @@ void Editor::drawPanels() {
         mPickUV = glm::vec2((io.MousePos.x - float(mViewport.x)) / float(mViewport.width), 1.0f - io.MousePos.y / float(mViewport.height));
         mPickPending = true;
     }
-    readFocus();
     const FrameSettings frame = frameSettings(mPreset, mScene, std::max(mWidth, 1), std::max(mHeight, 1));
-    const std::vector<Previewer> previewers = mRenderer.previewers(frame);
+    if (mLive) {
+        readFocus();
+        mPreviewers = mRenderer.previewers(frame);
+    }
+    const std::vector<Previewer>& previewers = mPreviewers;
     drawOverlays(frame, previewers);
     PanelContext ctx = panelContext();
 
@@ -644,7 +719,7 @@ void Editor::drawPanels() {
     column("Buffer previewer", kStatsHeight, std::max(display.y - kStatsHeight - kReferenceHeight, 64.0f),
            ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse, [&] {
                ImGui::PushItemWidth(-kLabelWidth * 0.6f);
-               mPreviewer.draw(mRenderer);
+               mPreviewer.draw(mLive ? &mRenderer : nullptr);
                ImGui::PopItemWidth();
            });
     column("Reference", display.y - kReferenceHeight, kReferenceHeight, 0, [&] {
@@ -660,7 +735,7 @@ void Editor::drawPanels() {
     apply(cost);
 }
 
-PanelContext Editor::panelContext() { return {mPreset, mScene, mRenderer, mFrameError, mWidth, mHeight}; }
+PanelContext Editor::panelContext() { return {mPreset, mScene, mLive ? &mRenderer : nullptr, mFrameError, mWidth, mHeight}; }
 
 PassPanel* Editor::panel(std::string_view section) const {
     for (const auto& [s, p] : mPanels)
@@ -716,26 +791,35 @@ void Editor::readFocus() {
 }
 
 void Editor::drawOverlays(const FrameSettings& fs, const std::vector<Previewer>& previewers) {
-    if (mWidth <= 0 || mRenderer.width() <= 0) return;
-    // The focus is read once per pick (readFocus), not every frame.
-    PreviewContext ctx = mRenderer.previewContext(fs, std::nullopt);
-    ctx.focus = mFocus;
-    ctx.overlayScale = mOverlayScale;
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    for (const Previewer& p : previewers) {
-        if (!p.overlay) continue;
-        auto it = mShowPreviewer.find(p.name);
-        if (it == mShowPreviewer.end() || !it->second) continue;
-        for (const GlyphLine& l : p.overlay(ctx)) {
-            glm::vec4 c = glm::clamp(l.colour, 0.0f, 1.0f) * 255.0f;
-            ImU32 colour = IM_COL32(int(c.r), int(c.g), int(c.b), int(c.a));
-            ImVec2 sa, sb;
-            if (!projectToScreen(ctx.viewProj, l.a, mViewport, sa) || !projectToScreen(ctx.viewProj, l.b, mViewport, sb)) continue;
-            if (l.a == l.b)
-                draw->AddCircleFilled(sa, 0.5f * l.width, colour);
-            else
-                draw->AddLine(sa, sb, colour, l.width);
+    if (mWidth <= 0) return;
+    if (mLive) {
+        // The lines are made while the context is held and drawn on every frame, with the
+        // projection of the image they belong to.
+        mOverlayLines.clear();
+        if (mRenderer.width() <= 0) return;
+        // The focus is read once per pick (readFocus), not every frame.
+        PreviewContext ctx = mRenderer.previewContext(fs, std::nullopt);
+        ctx.focus = mFocus;
+        ctx.overlayScale = mOverlayScale;
+        mOverlayViewProj = ctx.viewProj;
+        for (const Previewer& p : previewers) {
+            if (!p.overlay) continue;
+            auto it = mShowPreviewer.find(p.name);
+            if (it == mShowPreviewer.end() || !it->second) continue;
+            std::vector<GlyphLine> lines = p.overlay(ctx);
+            mOverlayLines.insert(mOverlayLines.end(), lines.begin(), lines.end());
         }
+    }
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    for (const GlyphLine& l : mOverlayLines) {
+        glm::vec4 c = glm::clamp(l.colour, 0.0f, 1.0f) * 255.0f;
+        ImU32 colour = IM_COL32(int(c.r), int(c.g), int(c.b), int(c.a));
+        ImVec2 sa, sb;
+        if (!projectToScreen(mOverlayViewProj, l.a, mViewport, sa) || !projectToScreen(mOverlayViewProj, l.b, mViewport, sb)) continue;
+        if (l.a == l.b)
+            draw->AddCircleFilled(sa, 0.5f * l.width, colour);
+        else
+            draw->AddLine(sa, sb, colour, l.width);
     }
 }
 
@@ -751,8 +835,9 @@ void Editor::previewerWindows(const FrameSettings& fs, const std::vector<Preview
         y += 40.0f;
         if (ImGui::Begin(p.name.c_str(), &shown->second)) {
             PreviewWindow& w = mPreviewWindows[p.name];
-            // Made again when the live image changes; a previewer may render views or read the G-buffer.
-            if (w.generation != mLiveGeneration || !w.image) {
+            // Made again when the live image changes; a previewer may render views or read the
+            // G-buffer, so only while the GI context is held.
+            if (mLive && (w.generation != mLiveGeneration || !w.image)) {
                 PreviewImage img = p.image(mRenderer.previewContext(fs, mFocusPixel));
                 w.generation = mLiveGeneration;
                 if (img.width > 0) {

@@ -1,7 +1,9 @@
 // The editor: the preset being tuned, its scene and the renderer, and the panels that edit them.
-// Each frame renders the preset as the window's background and draws the panels on top. Panels
-// edit the preset through the settings reflection (drawSettings) and report the OR of the Cost
-// bits of what changed; Editor::apply is the one place that acts on those bits.
+// The renderer's frames run on the GI thread (ui/gi_thread.h) whenever what they would draw has
+// changed; each UI frame draws the panels over the last finished image, so the UI stays at display
+// rate however slow the GI is. Panels edit the preset through the settings reflection
+// (drawSettings) and report the OR of the Cost bits of what changed; Editor::apply is the one
+// place that acts on those bits.
 #pragma once
 
 #include "gi/gl/handle.h"
@@ -11,6 +13,7 @@
 #include "gi/scene/scene.h"
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
+#include "ui/gi_thread.h"
 #include "ui/panel_util.h"
 #include "ui/pass_panel.h"
 #include "ui/reference_panel.h"
@@ -49,13 +52,26 @@ struct EditorOptions {
 
 class Editor {
 public:
-    // Loads the preset and its scene and builds the renderer. Needs a current GL 4.5 context.
-    // Throws gi::Error for a bad preset, scene or shader.
-    explicit Editor(const EditorOptions& options);
+    // Loads the preset and its scene and builds the renderer. Needs `gi` held by this thread (its
+    // context current); every GL object the editor makes lives there. Throws gi::Error for a bad
+    // preset, scene or shader.
+    Editor(const EditorOptions& options, GIThread& gi);
+    ~Editor();  // waits for the GI frame in flight
+    Editor(const Editor&) = delete;
+    Editor& operator=(const Editor&) = delete;
 
-    // One frame: camera input, the preset rendered into the default framebuffer (width x height,
-    // the window's background), then the panels. `dt` is the previous frame's duration in seconds.
+    // One UI frame (width x height, the window's framebuffer), called with the window's context
+    // current and left so: camera input and the panels; when the GI thread is idle, the finished
+    // frame is taken, the viewport composed (compositeTexture) and the next frame started if the
+    // settings, camera, scene or size changed. `dt` is the previous frame's duration in seconds.
     void frame(int width, int height, float dt);
+    // The window's background as last composed (the GI image in the viewport, a fill view or the
+    // reference over it), made in the GI context and finished: the caller copies it into the back
+    // buffer (Window::drawBackground) before the panels are drawn. Its size lags a resize until
+    // the GI thread is next idle.
+    unsigned compositeTexture() const { return mComposite.id(); }
+    int compositeWidth() const { return mComposite.width(); }
+    int compositeHeight() const { return mComposite.height(); }
 
     // The window title: the preset file, starred when it has unsaved changes.
     std::string title() const;
@@ -70,16 +86,19 @@ public:
     //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
     //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT | bookmark NAME | goto NAME | camera N |
     //   screenshot PATH (PATH-window.png and PATH-viewport.png) | help
-    // (drag: the value set mid-drag, so the next frame renders the preview and the one after the full frame)
+    // (drag: the value set mid-drag; the drag lasts until the next other action, so the GI previews until then)
+    // The editor runs the script one action per frame, each once the GI has caught up (giCaughtUp).
     // Throws gi::Error for an unknown action.
     void runAction(const std::string& action);
     bool scriptDone() const { return mScriptNext >= mScript.size(); }
-    // The GI frame this UI frame rendered, if it rendered one: the renderer runs only when what it
-    // would draw has changed (settings, camera, scene, shaders, size), at 1/previewDivisor of the
-    // size while a drag or a camera flight is under way, and not at all while paused.
+    // The GI frame this UI frame took from the GI thread, if one finished: the renderer runs only
+    // when what it would draw has changed (settings, camera, scene, shaders, size), at
+    // 1/previewDivisor of the size while a drag or a camera flight is under way, and not at all
+    // while paused.
     struct GIFrame {
-        float ms = 0.0f;  // wall time of the renderer call
+        float ms = 0.0f;  // wall time on the GI thread, until its GL work had finished
         int width = 0, height = 0;
+        uint64_t startUIFrame = 0;  // the UI frame (counted from 1) that started it
     };
     std::optional<GIFrame> renderedFrame() const { return mRendered; }
     // Pauses or resumes the GI work (the last image stays).
@@ -95,9 +114,13 @@ public:
     // Writes PATH-window.png (the whole window) and PATH-viewport.png (the scene between the columns,
     // without the panels); `scene` is read before the panels were drawn, `window` after.
     void writeScreenshot(const std::vector<uint8_t>& scene, const std::vector<uint8_t>& window, int width, int height);
-    // The frame that is shown is of the current settings at full size, and nothing waits for the
-    // renderer: what a screenshot waits for.
-    bool giSettled() const { return mPaused || mRenderedKey == mLiveKey; }
+    // The frame that is shown is of the current settings at full size and nothing is rendering:
+    // what a screenshot waits for.
+    bool giSettled() const { return mPaused || (!mGI.busy() && mRenderedKey == mLiveKey); }
+    // The GI shows what the current interaction asks for (the preview during a drag, else the full
+    // frame) and nothing is rendering: a script's next action waits for this, as a user looks at
+    // the picture before the next change.
+    bool giCaughtUp() const { return !mGI.busy() && (mPaused || mRenderedKey == mWantKey || mWantKey == mFailedKey); }
     // What a test reads back: title, file, dirty, the errors and status shown, the path field, the undo history
     // (labels and position) and the preset as it would be saved.
     json state() const;
@@ -128,6 +151,13 @@ private:
         uint64_t generation = ~uint64_t(0);  // mLiveGeneration the image was made in
     };
     std::map<std::string, PreviewWindow> mPreviewWindows;
+    // What the panels show of the renderer while the GI thread holds it (taken on each UI frame that
+    // holds the GI context): the previewers' names, the overlays' lines, the stats.
+    std::vector<Previewer> mPreviewers;  // their functions are called only while the context is held
+    std::vector<GlyphLine> mOverlayLines;
+    glm::mat4 mOverlayViewProj{1.0f};
+    std::vector<PassStats> mPassStats;
+    size_t mMemoryBytes = 0;
     // The passes' own panels (ui/pass_panels.cpp), by section.
     std::vector<std::pair<std::string_view, std::unique_ptr<PassPanel>>> mPanels;
     std::string mLoadedScene;           // header.scene that mScene came from
@@ -136,9 +166,26 @@ private:
     FlyCamera mFlyCamera;
     BufferPreviewer mPreviewer;
     ReferencePanel mReference;
+    GIThread& mGI;
+    bool mLive = false;  // this UI frame holds the GI context: the renderer and GL may be used
+    // A GI frame's outcome, written by the GI thread, read by the UI thread once it holds the context again.
+    struct GIResult {
+        std::string key;    // liveKey() of what it rendered
+        Preset preset;      // the settings it rendered
+        GIFrame frame;
+        std::string error;  // non-empty: it threw, and the image is the previous one
+    };
+    std::optional<GIResult> mResult;
+    std::string mSubmittedKey;          // the frame in flight
+    std::string mWantKey;               // liveKey() of what this frame asks the GI for (preview or full)
+    std::string mFailedKey;             // the last frame that threw: not tried again as such
+    gl::Texture mComposite;             // the window's background (compositeTexture)
+    gl::Framebuffer mCompositeFBO;
+    void collectResult();               // the finished GI frame, if one waits (context held)
+    void submitIfNeeded();              // starts the next GI frame, or gives the context back
     uint64_t mSceneGeneration = 0;  // grows with each installed scene
     uint64_t mLiveGeneration = 0;   // grows with each change that can alter the live image
-    gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit to the window
+    gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit into the composite
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
     float mRenderMs = 0.0f;             // the last GI frame's renderer call
@@ -148,7 +195,7 @@ private:
     std::string mLiveKey;               // liveKey() of this frame at full size
     bool mPaused = false;               // no GI work; the last image stays
     bool mInteracting = false;          // a drag, a typed value or a camera flight is under way
-    bool mScriptDrag = false;           // a script's drag action: the next frame is mid-drag
+    bool mScriptDrag = false;           // a script's drag is under way (from a drag action to the next other action)
     float mLeftWidth = kLeftWidth;      // the docked columns' widths (dragged by their inner edges)
     float mRightWidth = kRightWidth;
     ViewportRect mViewport;             // the window between them, where the scene is drawn
@@ -193,6 +240,8 @@ private:
     // Loads p's scene, checks it against the memory budget and uploads it; throws gi::Error and
     // then leaves the current scene in place. `resetView` takes the scene's own camera and lights.
     void installScene(Preset& p, bool resetView);
+    // The viewport's size and the frame's key; with the context held, the composite: the GI image,
+    // a fill view, a pass's view and the reference, and the reference job's update.
     void renderViewport(bool interacting);
     // What the image depends on: the preset, the scene and the live generation (shader reloads,
     // edits), and the size.

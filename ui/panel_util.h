@@ -28,6 +28,7 @@ double mebibytes(size_t bytes);
 // pixels from the left. It spans the window's height, so ImGui's and GL's rows agree on it.
 struct ViewportRect {
     int x = 0, width = 0, height = 0;
+    unsigned framebuffer = 0;  // what the viewport is drawn into: the editor's composite (Editor::compositeTexture)
     ImVec2 origin() const { return ImVec2(float(x), 0.0f); }
     ImVec2 size() const { return ImVec2(float(width), float(height)); }
     bool contains(ImVec2 p) const { return p.x >= float(x) && p.x < float(x + width) && p.y >= 0.0f && p.y < float(height); }

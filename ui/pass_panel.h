@@ -24,7 +24,9 @@ struct EditorOptions;
 struct PanelContext {
     Preset& preset;
     const Scene& scene;
-    Renderer& renderer;
+    // Null while the GI thread renders: then no GL call either, and the panel shows what it last
+    // made (ui/gi_thread.h).
+    Renderer* renderer;
     const std::string& frameError;  // the last frame's error, "" when it rendered
     int width, height;              // the frame's size
 };
@@ -36,7 +38,8 @@ public:
     virtual bool openAtStart() const { return false; }
     // Below the section's fields; returns the OR of the Cost bits of what it changed.
     virtual uint8_t drawSection(PanelContext&) { return 0; }
-    // Into the viewport (its rectangle of the default framebuffer) after the frame is drawn there.
+    // Into the viewport (its rectangle of ViewportRect::framebuffer) after the frame is drawn there;
+    // only while the GI context is held.
     virtual void drawViewport(PanelContext&, const FrameSettings&, const ViewportRect&) {}
     // Its own windows.
     virtual void drawWindows(PanelContext&) {}

@@ -226,7 +226,7 @@ void ReferencePanel::blit(const gl::Texture& texture, const ViewportRect& v) {
     if (!mReadFBO) mReadFBO = gl::createFramebuffer();
     glNamedFramebufferTexture(mReadFBO.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);
     // The images' rows are top first, the window's bottom first: the blit flips them.
-    glBlitNamedFramebuffer(mReadFBO.id(), 0, 0, 0, texture.width(), texture.height(), v.x, v.height, v.x + v.width, 0,
+    glBlitNamedFramebuffer(mReadFBO.id(), v.framebuffer, 0, 0, texture.width(), texture.height(), v.x, v.height, v.x + v.width, 0,
                            GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
@@ -241,7 +241,7 @@ void ReferencePanel::splitInteraction(const ViewportRect& v) {
     if (nearLine || mDraggingSplit) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
 }
 
-void ReferencePanel::drawViewport(const ViewportRect& viewport) {
+void ReferencePanel::drawViewport(const ViewportRect& viewport, bool drawImages) {
     if (!mEnabled) return;
     ReferenceView view = mView;
     if (view == ReferenceView::Toggle) {
@@ -252,15 +252,17 @@ void ReferencePanel::drawViewport(const ViewportRect& viewport) {
     if (!referenceShown()) return;
 
     if (view == ReferenceView::Reference) {
-        blit(mReferenceTexture, viewport);
+        if (drawImages) blit(mReferenceTexture, viewport);
     } else if (view == ReferenceView::Heat) {
-        if (mHaveMetrics && mHeatTexture) blit(mHeatTexture, viewport);
+        if (drawImages && mHaveMetrics && mHeatTexture) blit(mHeatTexture, viewport);
     } else if (view == ReferenceView::Split) {
-        int splitX = viewport.x + int(std::lround(mSplit * float(viewport.width)));
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(splitX, 0, viewport.x + viewport.width - splitX, viewport.height);
-        blit(mReferenceTexture, viewport);
-        glDisable(GL_SCISSOR_TEST);
+        if (drawImages) {
+            int splitX = viewport.x + int(std::lround(mSplit * float(viewport.width)));
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(splitX, 0, viewport.x + viewport.width - splitX, viewport.height);
+            blit(mReferenceTexture, viewport);
+            glDisable(GL_SCISSOR_TEST);
+        }
 
         // The line and the labels go behind the panels, like the viewport itself.
         ImDrawList* draw = ImGui::GetBackgroundDrawList();

@@ -57,8 +57,9 @@ public:
     // so the tracer's next passes take every core.
     void update(const Scene& scene, uint64_t sceneGeneration, uint64_t liveGeneration, const FrameSettings& fs,
                 const ReferenceSettings& rs, const Renderer& renderer, bool giIdle);
-    // Draws the chosen view over the live image already in the default framebuffer.
-    void drawViewport(const ViewportRect& viewport);
+    // Draws the chosen view over the live image already in viewport.framebuffer (drawImages: the
+    // GI context is held), and the split line and labels with the panels (always).
+    void drawViewport(const ViewportRect& viewport, bool drawImages);
     // The panel's widgets, into the current ImGui window.
     void draw();
 

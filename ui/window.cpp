@@ -29,6 +29,19 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
         glfwTerminate();
         throw NoDisplayError(message);
     }
+    // The GI context: same hints, never shown, sharing textures, buffers and programs with the window's.
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+    mGIWindow = glfwCreateWindow(16, 16, "GI context", nullptr, mWindow);
+    if (!mGIWindow) {
+        const char* reason = nullptr;
+        glfwGetError(&reason);
+        std::string message = std::string("cannot make a second OpenGL 4.5 context for the GI: ") + (reason ? reason : "unknown GLFW error");
+        glfwDestroyWindow(mWindow);
+        glfwTerminate();
+        throw NoDisplayError(message);
+    }
+    glfwMakeContextCurrent(mGIWindow);
+    gl::installDebugOutput();
     glfwMakeContextCurrent(mWindow);
     glfwSwapInterval(1);
     gl::installDebugOutput();
@@ -55,11 +68,32 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
 }
 
 Window::~Window() {
+    glfwMakeContextCurrent(mWindow);
+    if (mBackgroundFBO) glDeleteFramebuffers(1, &mBackgroundFBO);
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    glfwDestroyWindow(mGIWindow);
     glfwDestroyWindow(mWindow);
     glfwTerminate();
+}
+
+void Window::bindGI(bool current) { glfwMakeContextCurrent(current ? mGIWindow : nullptr); }
+
+void Window::bindUI() { glfwMakeContextCurrent(mWindow); }
+
+void Window::drawBackground(unsigned texture, int width, int height) {
+    int w, h;
+    framebufferSize(w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (!texture || width <= 0 || height <= 0) return;
+    if (!mBackgroundFBO) glCreateFramebuffers(1, &mBackgroundFBO);
+    // Attached every frame: a resized texture may reuse an old name.
+    glNamedFramebufferTexture(mBackgroundFBO, GL_COLOR_ATTACHMENT0, texture, 0);
+    glBlitNamedFramebuffer(mBackgroundFBO, 0, 0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(mWindow); }

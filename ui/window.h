@@ -42,8 +42,19 @@ public:
     void setTitle(const std::string& title);
     void setSize(int width, int height);
 
+    // The GI context (ui/gi_thread.h): a hidden window's GL context shared with this one.
+    // bindGI(true) makes it current on the calling thread (any thread), bindGI(false) leaves the
+    // thread with none; bindUI() makes the window's own context current (the UI thread).
+    void bindGI(bool current);
+    void bindUI();
+    // Window's context: copies the texture's lower-left width x height texels (made in the GI
+    // context and finished there) into the back buffer at the same place, under the panels.
+    void drawBackground(unsigned texture, int width, int height);
+
 private:
     GLFWwindow* mWindow = nullptr;
+    GLFWwindow* mGIWindow = nullptr;  // hidden; only its context is used
+    unsigned mBackgroundFBO = 0;      // the window context's own (framebuffers are not shared)
     std::unique_ptr<KeyEventQueue> mKeys;  // GLFW's key events, handed to ImGui one change per key per frame
 };
 

@@ -32,9 +32,14 @@ public:
         }
         if (!open) return 0;
         EnvironmentSettings& s = ctx.preset.environment;
-        const Environment* envPass = ctx.renderer.activePass<Environment>();
-        GI_ASSERT(envPass, "the environment is an effect: the renderer always holds it");
-        const Environment& env = *envPass;
+        // What the chain holds, read while the GI context is held and shown from that otherwise.
+        if (ctx.renderer) {
+            const Environment* envPass = ctx.renderer->activePass<Environment>();
+            GI_ASSERT(envPass, "the environment is an effect: the renderer always holds it");
+            mChain = {envPass->ready(), envPass->loadMs(), envPass->ready() ? envPass->mips() : std::vector<Environment::MipInfo>{},
+                      envPass->prefiltered()};
+        }
+        const Chain& env = mChain;
         // The change tag comes from the settings table, as for every other edit.
         Cost tableCost = Cost::Reallocate;
         s.visit([&](auto&, const FieldMeta& m) {
@@ -44,7 +49,7 @@ public:
 
         if (!s.enabled) {
             hintText("environment lighting is off (environment.enabled): no mip chain is built; the table below is what one would hold");
-        } else if (!env.ready()) {
+        } else if (!env.ready) {
             wrappedText(kErrorColor, "the environment map did not load" + (ctx.frameError.empty() ? std::string(" (see the message above)")
                                                                                               : ": " + ctx.frameError));
         } else if (!ctx.frameError.empty() && lowercase(ctx.frameError).find("environment") != std::string::npos) {
@@ -59,7 +64,7 @@ public:
         std::vector<float>& table = s.mipRoughness;
         auto mipOf = [&](int entry) { return Environment::chainMipOfEntry(s, entry); };
         const bool cone = s.distribution == PrefilterDistribution::BeckmannCone;
-        const std::vector<Environment::MipInfo> built = env.ready() ? env.mips() : std::vector<Environment::MipInfo>{};
+        const std::vector<Environment::MipInfo>& built = env.mips;
         const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerH | ImGuiTableFlags_SizingStretchProp;
         if (ImGui::BeginTable("mips", 6, flags)) {
             ImGui::TableSetupColumn("mip", ImGuiTableColumnFlags_WidthFixed);
@@ -155,17 +160,17 @@ public:
             cost |= uint8_t(tableCost);
         }
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("the seed's 11 levels (seed 004, Fig. 3.24)");
-        if (env.ready()) {
-            double total = env.loadMs();
+        if (env.ready) {
+            double total = env.loadMs;
             for (const Environment::MipInfo& info : built) total += info.ms;
             char line[128];
             std::snprintf(line, sizeof line, "%zu mips (%s): load %.1f ms, with the prefilter %.1f ms", built.size(),
-                          enumName(s.distribution), env.loadMs(), total);
+                          enumName(s.distribution), env.loadMs, total);
             hintText(line);
         }
 
         // The selected mip of the built chain, through the renderer's view pass.
-        if (s.enabled && env.ready() && !built.empty()) {
+        if (s.enabled && env.ready && !built.empty()) {
             ImGui::Separator();
             mSelected = std::clamp(mSelected, 0, int(built.size()) - 1);
             if (ImGui::RadioButton("cross", !mLatLong)) mLatLong = false;
@@ -175,14 +180,14 @@ public:
             ImGui::SliderFloat("mip exposure", &mExposure, -10.0f, 10.0f, "%.1f EV");
             const float width = std::max(std::floor(ImGui::GetContentRegionAvail().x), 64.0f);
             const int w = int(width), h = mLatLong ? w / 2 : w * 3 / 4;
-            if (!mImage || mImage.width() != w || mImage.height() != h) {
+            if (ctx.renderer && (!mImage || mImage.width() != w || mImage.height() != h)) {
                 mImage = gl::Texture::create2D(GL_RGBA8, w, h);
                 if (!mFBO) mFBO = gl::createFramebuffer();
                 glNamedFramebufferTexture(mFBO.id(), GL_COLOR_ATTACHMENT0, mImage.id(), 0);
             }
             DebugView view;
             view.name = "environment.mip" + std::to_string(mSelected);
-            view.texture = env.prefiltered();
+            view.texture = env.prefiltered;
             view.target = GL_TEXTURE_CUBE_MAP;
             view.mode = mLatLong ? shared::kViewCubeLatLong : shared::kViewCubeCross;
             view.width = w;
@@ -190,10 +195,12 @@ public:
             view.level = mSelected;
             Renderer::ViewParams params;
             params.exposure = mExposure;
-            glBindFramebuffer(GL_FRAMEBUFFER, mFBO.id());
-            glViewport(0, 0, w, h);
-            ctx.renderer.drawView(view, params);
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            if (ctx.renderer) {
+                glBindFramebuffer(GL_FRAMEBUFFER, mFBO.id());
+                glViewport(0, 0, w, h);
+                ctx.renderer->drawView(view, params);
+                glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            }
             ImGui::Image(ImTextureID(intptr_t(mImage.id())), ImVec2(float(w), float(h)), ImVec2(0, 1), ImVec2(1, 0));
             const Environment::MipInfo& info = built[size_t(mSelected)];
             if (ImGui::IsItemHovered())
@@ -213,6 +220,13 @@ private:
     float mExposure = 0.0f; // EV
     gl::Texture mImage;     // the preview, rendered by Renderer::drawView at the panel's width
     gl::Framebuffer mFBO;
+    struct Chain {
+        bool ready = false;
+        double loadMs = 0.0;
+        std::vector<Environment::MipInfo> mips;
+        GLuint prefiltered = 0;
+    };
+    Chain mChain;  // the environment pass's chain as last read (the GI thread may hold the renderer)
 };
 
 }  // namespace

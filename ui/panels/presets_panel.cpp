@@ -32,7 +32,8 @@ void Editor::presetsPanel() {
     ImGui::SameLine();
     if (ImGui::Button("Reload shaders")) {
         std::string log;
-        // On failure the renderer keeps its old programs; the log says why.
+        // On failure the renderer keeps its old programs; the log says why. A frame in flight finishes first.
+        mGI.acquire();
         mShaderLog = mRenderer.reloadShaders(log) ? std::string() : log;
         ++mLiveGeneration;
         if (mShaderLog.empty()) mPresetStatus = "shaders reloaded";

@@ -15,7 +15,7 @@ void Editor::statsPanel() {
     ImGui::TextWrapped("%s", mGLRenderer.c_str());
     ImGui::Text("UI %.1f ms (%.1f fps), %dx%d", mFrameMs, mFrameMs > 0 ? 1000.0f / mFrameMs : 0.0f, mWidth, mHeight);
     // The GI renders only when its image would change: say what the picture on screen is.
-    const char* state = mPaused ? "paused" : giSettled() ? "up to date" : mRenderSize != glm::ivec2(mWidth, mHeight) ? "preview" : "rendering";
+    const char* state = mPaused ? "paused" : giSettled() ? "up to date" : mGI.busy() ? "rendering" : mRenderSize != glm::ivec2(mWidth, mHeight) ? "preview" : "waiting";
     ImGui::Text("GI %.1f ms at %dx%d, %s", mRenderMs, mRenderSize.x, mRenderSize.y, state);
     if (ImGui::SmallButton("Help (F1)")) mShowHelp = !mShowHelp;
     ImGui::SameLine();
@@ -47,7 +47,7 @@ void Editor::statsPanel() {
             ImGui::TableNextColumn();
             ImGui::Text("%.1f", mebibytes(bytes));
         };
-        for (const PassStats& p : mRenderer.passStats()) {
+        for (const PassStats& p : mPassStats) {
             row(p.name.c_str(), p.gpuMs, p.memoryBytes);
             totalMs += p.gpuMs;
             passBytes += p.memoryBytes;
@@ -55,7 +55,7 @@ void Editor::statsPanel() {
         row("total", totalMs, passBytes);
         ImGui::EndTable();
     }
-    size_t total = mRenderer.memoryBytes();
+    size_t total = mMemoryBytes;
     ImGui::Text("GPU memory %.1f MiB (scene %.1f MiB)", mebibytes(total), mebibytes(total - std::min(total, passBytes)));
     ImGui::Text("budget %.0f MiB", double(mPreset.render.memoryBudgetMB));
 }

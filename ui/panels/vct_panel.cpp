@@ -59,7 +59,7 @@ public:
 
     void drawViewport(PanelContext& ctx, const FrameSettings& fs, const ViewportRect& viewport) override {
         if (mDisplay != Display::Viewport || fs.technique != VCTSettings::kSection) return;
-        render(ctx, fs, 0, viewport.width, viewport.height, viewport.x);
+        render(ctx, fs, viewport.framebuffer, viewport.width, viewport.height, viewport.x);
     }
 
     void drawWindows(PanelContext& ctx) override {
@@ -71,7 +71,7 @@ public:
         if (ImGui::Begin("Voxel view", &open, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse)) {
             ImVec2 avail = ImGui::GetContentRegionAvail();
             int w = std::max(int(avail.x), 16), h = std::max(int(avail.y), 16);
-            if (!mImage || mImage.width() != w || mImage.height() != h) {
+            if (ctx.renderer && (!mImage || mImage.width() != w || mImage.height() != h)) {
                 mImage = gl::Texture::create2D(GL_RGBA8, w, h);
                 if (!mFBO) mFBO = gl::createFramebuffer();
                 glNamedFramebufferTexture(mFBO.id(), GL_COLOR_ATTACHMENT0, mImage.id(), 0);
@@ -93,7 +93,8 @@ private:
     gl::Framebuffer mFBO;
 
     void render(PanelContext& ctx, const FrameSettings& fs, GLuint framebuffer, int width, int height, int x = 0) {
-        std::vector<VoxelGridView> grids = voxelGrids(ctx.renderer.debugViews(), fs, ctx.scene.bounds);
+        if (!ctx.renderer) return;  // the GI thread holds it: the last picture stands
+        std::vector<VoxelGridView> grids = voxelGrids(ctx.renderer->debugViews(), fs, ctx.scene.bounds);
         VoxelViewParams params = mParams;
         params.viewProj = projectionMatrix(fs.camera, float(width) / float(height)) * viewMatrix(fs.camera);
         if (mAutoLevel) params.level = finestLevelHolding(grids, fs.camera.target);

@@ -1,0 +1,106 @@
+#include "ui/gi_thread.h"
+
+#include <epoxy/gl.h>
+
+namespace gi::ui {
+
+namespace {
+
+// Waits until every command issued so far in the current context has run: what the next context
+// to read its results needs (textures written here, sampled there). A fence and a client wait
+// rather than glFinish, so a driver may return as soon as the work is done.
+void finishCommands() {
+    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (!fence) {
+        glFinish();
+        return;
+    }
+    while (glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) == GL_TIMEOUT_EXPIRED) {
+    }
+    glDeleteSync(fence);
+}
+
+}  // namespace
+
+GIThread::GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI)
+    : mBindGI(std::move(bindGI)), mBindUI(std::move(bindUI)) {
+    mThread = std::thread([this] { loop(); });
+}
+
+GIThread::~GIThread() {
+    {
+        std::unique_lock lock(mMutex);
+        mDone.wait(lock, [&] { return !mRunning; });
+        mStop = true;
+    }
+    mWake.notify_all();
+    mThread.join();
+}
+
+bool GIThread::busy() const {
+    std::lock_guard lock(mMutex);
+    return mRunning;
+}
+
+bool GIThread::tryAcquire() {
+    if (mHeld) return true;
+    if (busy()) return false;
+    // The window's last commands (which read textures the GI context is about to rewrite) run first.
+    finishCommands();
+    mBindGI(true);
+    mHeld = true;
+    return true;
+}
+
+void GIThread::acquire() {
+    if (mHeld) return;
+    {
+        std::unique_lock lock(mMutex);
+        mDone.wait(lock, [&] { return !mRunning; });
+    }
+    tryAcquire();
+}
+
+void GIThread::handBack() {
+    finishCommands();
+    mBindGI(false);
+    mHeld = false;
+    mBindUI();
+}
+
+void GIThread::submit(std::function<void()> job) {
+    if (!mHeld) acquire();
+    handBack();
+    {
+        std::lock_guard lock(mMutex);
+        mJob = std::move(job);
+        mRunning = true;
+    }
+    mWake.notify_all();
+}
+
+void GIThread::release() {
+    if (mHeld) handBack();
+}
+
+void GIThread::loop() {
+    std::unique_lock lock(mMutex);
+    for (;;) {
+        mWake.wait(lock, [&] { return mStop || mJob; });
+        if (mStop) return;
+        std::function<void()> job = std::move(mJob);
+        mJob = nullptr;
+        lock.unlock();
+        mBindGI(true);
+        job();
+        // The frame's GL work is done before the UI thread is told: the UI thread's first read
+        // of its results must not wait on it.
+        finishCommands();
+        mBindGI(false);
+        lock.lock();
+        mRunning = false;
+        mDone.notify_all();
+    }
+}
+
+}  // namespace gi::ui

@@ -1,0 +1,62 @@
+// The GI thread: the renderer's frames run on a worker thread in a GL context of their own (the
+// "GI context", shared with the window's), so the UI thread keeps drawing panels at display rate
+// while a frame takes seconds on llvmpipe.
+//
+// One thread holds the GI context at a time. The UI thread takes it between GI frames (tryAcquire)
+// to read what the last frame made (previews, picks, the viewport image), hands it to the worker
+// with the next frame's job (submit), or gives it back (release); either way its own (window)
+// context is current again afterwards, with every command it issued in the GI context finished,
+// so the window can draw the textures made there. Every object the renderer and the editor's
+// previews make lives in the GI context: framebuffers and vertex arrays are not shared between
+// contexts, textures and programs are.
+#pragma once
+
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+namespace gi::ui {
+
+class GIThread {
+public:
+    // bindGI(true) makes the GI context current on the calling thread, bindGI(false) leaves the
+    // thread with none; bindUI() makes the window's context current on the UI thread.
+    GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI);
+    ~GIThread();  // waits for the job in flight
+    GIThread(const GIThread&) = delete;
+    GIThread& operator=(const GIThread&) = delete;
+
+    // UI thread. Whether a job is running (the worker holds the GI context).
+    bool busy() const;
+    // Whether the UI thread holds the GI context now.
+    bool held() const { return mHeld; }
+    // Takes the GI context if no job is running: true, and it is current on this thread. True
+    // at once when already held.
+    bool tryAcquire();
+    // Takes the GI context, waiting for the job in flight.
+    void acquire();
+    // Held: hands the GI context to the worker, which runs `job` and finishes its GL work before
+    // it counts as done; the window's context is current on return. A job's exceptions are the
+    // job's to catch.
+    void submit(std::function<void()> job);
+    // Held: gives the GI context up; the window's context is current on return.
+    void release();
+
+private:
+    void loop();
+    // Ends the UI thread's use of the GI context: its commands finished, the window's context current.
+    void handBack();
+
+    std::function<void(bool)> mBindGI;
+    std::function<void()> mBindUI;
+    mutable std::mutex mMutex;
+    std::condition_variable mWake, mDone;
+    std::function<void()> mJob;  // the job waiting or running
+    bool mRunning = false;       // a job is queued or running
+    bool mStop = false;
+    bool mHeld = false;          // UI thread only
+    std::thread mThread;
+};
+
+}  // namespace gi::ui
