@@ -6,6 +6,7 @@
 #include "gi/render/image_io.h"
 #include "gi/util/paths.h"
 #include "ui/editor.h"
+#include "ui/texture_bridge.h"
 #include "ui/window.h"
 
 #include <CLI/CLI.hpp>
@@ -69,7 +70,7 @@ int run(int argc, char** argv) {
                    "pause, resume, wait; # comments), then exit")
         ->check(CLI::ExistingFile);
     app.add_option("--ui-stats", uiStats,
-                   "At exit, write this JSON file: uiFrameMs (each UI frame), giFrameMs (each GI frame the renderer made), giFrames "
+                   "At exit, write this JSON file: uiFrameMs (each UI frame's work, less any wait for input), giFrameMs (each GI frame the renderer made), giFrames "
                    "(each GI frame's ms, width, height, the UI frame that started it, startUIFrame, and the one that took it, uiFrame) and "
                    "editor (title, dirty, errors, status, undo history, the preset as it would be saved)");
     try {
@@ -100,7 +101,7 @@ int run(int argc, char** argv) {
     options.resizeWindow = [&window](int w, int h) { window.setSize(w, h); };
     // The GI renders on its own thread, in a context of its own (ui/gi_thread.h); the editor is
     // made in that context, and each UI frame hands it back and forth.
-    gi::ui::GIThread gi([&window](bool current) { window.bindGI(current); }, [&window] { window.bindUI(); });
+    gi::ui::GIThread gi([&window](bool current) { window.bindGI(current); }, [&window] { window.bindUI(); }, &gi::ui::Window::wake);
     gi.acquire();
     gi::ui::Editor editor(options, gi);
     gi.release();
@@ -109,6 +110,7 @@ int run(int argc, char** argv) {
     std::chrono::steady_clock::time_point waitStart;
     bool timedOut = false, waitingForReference = false;
     auto last = std::chrono::steady_clock::now();
+    double waited = 0.0;  // seconds the last frame waited for input (beginFrame)
     std::vector<float> uiFrameMs, giFrameMs;
     gi::json giFrames = gi::json::array();
     const auto start = std::chrono::steady_clock::now();
@@ -119,20 +121,26 @@ int run(int argc, char** argv) {
         auto now = std::chrono::steady_clock::now();
         float dt = std::chrono::duration<float>(now - last).count();
         last = now;
-        if (frame > 1) uiFrameMs.push_back(dt * 1000.0f);
+        // A UI frame's time is its work: not the time it waited for input while the GI rendered.
+        const float workMs = std::max(dt - float(waited), 0.0f) * 1000.0f;
+        if (frame > 1) uiFrameMs.push_back(workMs);
         if (!scriptFile.empty() && frames == 0 && scriptEnd == 0 && editor.scriptDone()) scriptEnd = frame + 1;
 
-        window.beginFrame();
+        // While the GI thread renders and nothing happens, the UI waits for input (at most 0.1 s,
+        // or until the GI frame is done), so the GI gets the cores.
+        waited = window.beginFrame(gi.busy() ? 0.1 : 0.0);
         int width, height;
         window.framebufferSize(width, height);
-        editor.frame(width, height, dt);
+        editor.frame(width, height, dt, workMs);
         if (auto gi = editor.renderedFrame()) {
             giFrameMs.push_back(gi->ms);
             giFrames.push_back({{"ms", gi->ms}, {"width", gi->width}, {"height", gi->height}, {"uiFrame", frame}, {"startUIFrame", gi->startUIFrame}});
         }
         if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(frameDelayMs));
-        // The last composed image under the panels (made in the GI context, finished there).
-        window.drawBackground(editor.compositeTexture(), editor.compositeWidth(), editor.compositeHeight());
+        // The last composed image under the panels (made in the GI context, copied across by the bridge).
+        int backgroundWidth = 0, backgroundHeight = 0;
+        const unsigned background = window.bridge().windowTexture(editor.composite(), backgroundWidth, backgroundHeight);
+        window.drawBackground(background, backgroundWidth, backgroundHeight);
         // A screenshot the editor asked for: the scene before the panels are drawn, then the window.
         std::vector<uint8_t> scene;
         if (editor.screenshotRequest()) scene = window.readBackBuffer(width, height);
@@ -150,6 +158,7 @@ int run(int argc, char** argv) {
             if (std::chrono::duration<double>(std::chrono::steady_clock::now() - settleStart).count() < kSettleSeconds) {
                 window.swap();
                 std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                waited += 0.02;  // a pause of the run's, not UI work
                 continue;
             }
             std::fprintf(stderr, "gi-editor: the GI did not finish within %.0f s; the screenshot shows what there is\n", kSettleSeconds);
@@ -163,6 +172,7 @@ int run(int argc, char** argv) {
             if (!timedOut) {
                 window.swap();
                 std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                waited += 0.1;
                 continue;
             }
         }

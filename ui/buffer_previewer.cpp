@@ -1,5 +1,7 @@
 #include "ui/buffer_previewer.h"
 
+#include "ui/texture_bridge.h"
+
 #include "common/shared.h"
 
 #include <glm/common.hpp>
@@ -81,7 +83,7 @@ void BufferPreviewer::draw(const Renderer* renderer) {
     if (renderer) renderImage(*renderer, *view, mPanel, int(size.x), int(size.y));
 
     ImVec2 pos = ImGui::GetCursorScreenPos();
-    ImGui::Image(ImTextureID(intptr_t(mPanel.image.id())), ImVec2(size.x, size.y), ImVec2(0, 1), ImVec2(1, 0));
+    giImage(mPanel.image, ImVec2(size.x, size.y));
     // An invisible button over the image takes the clicks, so dragging pans instead of moving the window.
     ImGui::SetCursorScreenPos(pos);
     ImGui::InvisibleButton("##image", ImVec2(size.x, size.y));

@@ -6,6 +6,7 @@
 #include "gi/util/paths.h"
 #include "ui/panel_util.h"
 #include "ui/settings_panel.h"
+#include "ui/texture_bridge.h"
 
 #include <imgui.h>
 
@@ -187,8 +188,8 @@ std::string Editor::title() const {
     return "GI Workbench - " + file + (mDirty ? " *" : "");
 }
 
-void Editor::frame(int width, int height, float dt) {
-    mFrameMs = mFrameMs == 0.0f ? dt * 1000.0f : 0.9f * mFrameMs + 0.1f * dt * 1000.0f;
+void Editor::frame(int width, int height, float dt, float workMs) {
+    mFrameMs = mFrameMs == 0.0f ? workMs : 0.9f * mFrameMs + 0.1f * workMs;
 
     CameraSettings camera = mPreset.camera;
     if (camera.sceneCamera >= 0 && camera.sceneCamera < int(mScene.cameras.size())) {
@@ -223,6 +224,7 @@ void Editor::frame(int width, int height, float dt) {
     // Between GI frames this UI frame holds the GI context: it takes the finished frame and may use
     // the renderer; otherwise the panels show what they last read of it.
     mLive = mGI.tryAcquire();
+    textureBridge().setLive(mLive);
     if (mLive) collectResult();
     // The panels dock to the window's sides (drawPanels); the scene fills what lies between.
     const float minViewport = 0.25f * float(width);
@@ -551,6 +553,7 @@ void Editor::renderViewport(bool interacting) {
         glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
         mReference.drawViewport(target, true);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        textureBridge().id(mComposite);  // read back for the window
     } else {
         // The composite stands; what is drawn with the panels (labels, a readout) still follows the mouse.
         mPreviewer.drawViewport(nullptr, mViewport);
@@ -850,7 +853,7 @@ void Editor::previewerWindows(const FrameSettings& fs, const std::vector<Preview
             if (w.image) {
                 float width = std::max(ImGui::GetContentRegionAvail().x, 64.0f);
                 float height = width * float(w.image.height()) / float(w.image.width());
-                ImGui::Image(ImTextureID(intptr_t(w.image.id())), ImVec2(width, height), ImVec2(0, 1), ImVec2(1, 0));
+                giImage(w.image, ImVec2(width, height));
             } else {
                 hintText("nothing to show this frame");
             }

@@ -63,15 +63,14 @@ public:
     // One UI frame (width x height, the window's framebuffer), called with the window's context
     // current and left so: camera input and the panels; when the GI thread is idle, the finished
     // frame is taken, the viewport composed (compositeTexture) and the next frame started if the
-    // settings, camera, scene or size changed. `dt` is the previous frame's duration in seconds.
-    void frame(int width, int height, float dt);
+    // settings, camera, scene or size changed. `dt` is the previous frame's duration in seconds,
+    // `workMs` its time less any wait for input (what the Stats panel shows).
+    void frame(int width, int height, float dt, float workMs);
     // The window's background as last composed (the GI image in the viewport, a fill view or the
     // reference over it), made in the GI context and finished: the caller copies it into the back
     // buffer (Window::drawBackground) before the panels are drawn. Its size lags a resize until
     // the GI thread is next idle.
-    unsigned compositeTexture() const { return mComposite.id(); }
-    int compositeWidth() const { return mComposite.width(); }
-    int compositeHeight() const { return mComposite.height(); }
+    const gl::Texture& composite() const { return mComposite; }
 
     // The window title: the preset file, starred when it has unsaved changes.
     std::string title() const;

@@ -6,9 +6,8 @@ namespace gi::ui {
 
 namespace {
 
-// Waits until every command issued so far in the current context has run: what the next context
-// to read its results needs (textures written here, sampled there). A fence and a client wait
-// rather than glFinish, so a driver may return as soon as the work is done.
+// Waits until every command issued so far in the current context has run. A fence and a client
+// wait rather than glFinish, so a driver may return as soon as the work is done.
 void finishCommands() {
     GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     if (!fence) {
@@ -22,8 +21,8 @@ void finishCommands() {
 
 }  // namespace
 
-GIThread::GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI)
-    : mBindGI(std::move(bindGI)), mBindUI(std::move(bindUI)) {
+GIThread::GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI, std::function<void()> onDone)
+    : mBindGI(std::move(bindGI)), mBindUI(std::move(bindUI)), mOnDone(std::move(onDone)) {
     mThread = std::thread([this] { loop(); });
 }
 
@@ -45,8 +44,6 @@ bool GIThread::busy() const {
 bool GIThread::tryAcquire() {
     if (mHeld) return true;
     if (busy()) return false;
-    // The window's last commands (which read textures the GI context is about to rewrite) run first.
-    finishCommands();
     mBindGI(true);
     mHeld = true;
     return true;
@@ -62,7 +59,6 @@ void GIThread::acquire() {
 }
 
 void GIThread::handBack() {
-    finishCommands();
     mBindGI(false);
     mHeld = false;
     mBindUI();
@@ -93,13 +89,14 @@ void GIThread::loop() {
         lock.unlock();
         mBindGI(true);
         job();
-        // The frame's GL work is done before the UI thread is told: the UI thread's first read
-        // of its results must not wait on it.
+        // The frame's GL work is done before the UI thread is told: the UI thread's first use of
+        // the context must not wait on it.
         finishCommands();
         mBindGI(false);
         lock.lock();
         mRunning = false;
         mDone.notify_all();
+        if (mOnDone) mOnDone();
     }
 }
 

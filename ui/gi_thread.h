@@ -1,14 +1,12 @@
 // The GI thread: the renderer's frames run on a worker thread in a GL context of their own (the
-// "GI context", shared with the window's), so the UI thread keeps drawing panels at display rate
-// while a frame takes seconds on llvmpipe.
+// "GI context"), so the UI thread keeps drawing panels at display rate while a frame takes
+// seconds on llvmpipe.
 //
 // One thread holds the GI context at a time. The UI thread takes it between GI frames (tryAcquire)
 // to read what the last frame made (previews, picks, the viewport image), hands it to the worker
 // with the next frame's job (submit), or gives it back (release); either way its own (window)
-// context is current again afterwards, with every command it issued in the GI context finished,
-// so the window can draw the textures made there. Every object the renderer and the editor's
-// previews make lives in the GI context: framebuffers and vertex arrays are not shared between
-// contexts, textures and programs are.
+// context is current again afterwards. Every object the renderer and the editor's previews make
+// lives in the GI context; the window shows their images through ui/texture_bridge.h.
 #pragma once
 
 #include <condition_variable>
@@ -22,7 +20,8 @@ class GIThread {
 public:
     // bindGI(true) makes the GI context current on the calling thread, bindGI(false) leaves the
     // thread with none; bindUI() makes the window's context current on the UI thread.
-    GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI);
+    // onDone (optional) is called on the worker when a job has finished (e.g. to wake the UI).
+    GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI, std::function<void()> onDone = {});
     ~GIThread();  // waits for the job in flight
     GIThread(const GIThread&) = delete;
     GIThread& operator=(const GIThread&) = delete;
@@ -45,11 +44,12 @@ public:
 
 private:
     void loop();
-    // Ends the UI thread's use of the GI context: its commands finished, the window's context current.
+    // Ends the UI thread's use of the GI context: the window's context current again.
     void handBack();
 
     std::function<void(bool)> mBindGI;
     std::function<void()> mBindUI;
+    std::function<void()> mOnDone;
     mutable std::mutex mMutex;
     std::condition_variable mWake, mDone;
     std::function<void()> mJob;  // the job waiting or running

@@ -1,8 +1,10 @@
 #include "ui/window.h"
 
 #include "ui/input_queue.h"
+#include "ui/texture_bridge.h"
 
 #include "gi/gl/debug.h"
+#include "gi/platform/egl_context.h"
 
 // libepoxy must come before GLFW, which is told (GLFW_INCLUDE_NONE) not to pull in a GL header.
 #include <epoxy/gl.h>
@@ -29,20 +31,18 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
         glfwTerminate();
         throw NoDisplayError(message);
     }
-    // The GI context: same hints, never shown, sharing textures, buffers and programs with the window's.
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    mGIWindow = glfwCreateWindow(16, 16, "GI context", nullptr, mWindow);
-    if (!mGIWindow) {
-        const char* reason = nullptr;
-        glfwGetError(&reason);
-        std::string message = std::string("cannot make a second OpenGL 4.5 context for the GI: ") + (reason ? reason : "unknown GLFW error");
+    // The GI context: EGL surfaceless, as gi-render's, with its own llvmpipe rasterizer.
+    try {
+        mGIContext = std::make_unique<EGLContextHeadless>(true);
+        mGIContext->release();
+    } catch (const std::exception& e) {
         glfwDestroyWindow(mWindow);
         glfwTerminate();
-        throw NoDisplayError(message);
+        throw NoDisplayError(std::string("cannot make the GI's OpenGL context: ") + e.what());
     }
-    glfwMakeContextCurrent(mGIWindow);
-    gl::installDebugOutput();
     glfwMakeContextCurrent(mWindow);
+    mBridge = std::make_unique<TextureBridge>();
+    setTextureBridge(mBridge.get());
     glfwSwapInterval(1);
     gl::installDebugOutput();
 
@@ -68,19 +68,32 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
 }
 
 Window::~Window() {
+    mGIContext->release();
     glfwMakeContextCurrent(mWindow);
     if (mBackgroundFBO) glDeleteFramebuffers(1, &mBackgroundFBO);
+    setTextureBridge(nullptr);
+    mBridge.reset();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
-    glfwDestroyWindow(mGIWindow);
     glfwDestroyWindow(mWindow);
+    mGIContext.reset();
     glfwTerminate();
 }
 
-void Window::bindGI(bool current) { glfwMakeContextCurrent(current ? mGIWindow : nullptr); }
+void Window::bindGI(bool current) {
+    if (current) {
+        glfwMakeContextCurrent(nullptr);
+        mGIContext->makeCurrent();
+    } else {
+        mGIContext->release();
+    }
+}
 
-void Window::bindUI() { glfwMakeContextCurrent(mWindow); }
+void Window::bindUI() {
+    mGIContext->release();
+    glfwMakeContextCurrent(mWindow);
+}
 
 void Window::drawBackground(unsigned texture, int width, int height) {
     int w, h;
@@ -98,8 +111,15 @@ void Window::drawBackground(unsigned texture, int width, int height) {
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(mWindow); }
 
-void Window::beginFrame() {
-    glfwPollEvents();
+double Window::beginFrame(double waitSeconds) {
+    double waited = 0.0;
+    if (waitSeconds > 0.0 && mKeys->pending() == 0) {
+        const double start = glfwGetTime();
+        glfwWaitEventsTimeout(waitSeconds);
+        waited = glfwGetTime() - start;
+    } else {
+        glfwPollEvents();
+    }
     // At most one press or release per key this frame; the rest wait for the next frames.
     mKeys->drain([&](const KeyEvent& e) {
         if (e.codepoint != 0) ImGui_ImplGlfw_CharCallback(mWindow, e.codepoint);
@@ -108,10 +128,14 @@ void Window::beginFrame() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    return waited;
 }
+
+void Window::wake() { glfwPostEmptyEvent(); }
 
 void Window::renderUI() {
     ImGui::Render();
+    mBridge->resolve(ImGui::GetDrawData());
     int width, height;
     framebufferSize(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -11,9 +11,14 @@
 
 struct GLFWwindow;
 
+namespace gi {
+class EGLContextHeadless;
+}
+
 namespace gi::ui {
 
 class KeyEventQueue;
+class TextureBridge;
 
 // No window could be opened (no X display, or no GL 4.5): the caller exits with its own code.
 class NoDisplayError : public Error {
@@ -30,8 +35,12 @@ public:
     Window& operator=(const Window&) = delete;
 
     bool shouldClose() const;
-    // Polls events and starts an ImGui frame.
-    void beginFrame();
+    // Takes the window's events and starts an ImGui frame. With waitSeconds > 0 it first waits up
+    // to that long for an event (input, a resize, or wake()), unless queued keys are pending: a UI
+    // with nothing to show gives the cores to the GI. Returns the seconds it waited.
+    double beginFrame(double waitSeconds = 0.0);
+    // Ends a wait in beginFrame; any thread.
+    static void wake();
     // Draws the ImGui frame over whatever the back buffer holds.
     void renderUI();
     // The back buffer as RGBA8, bottom row first, alpha forced opaque. Call before swap().
@@ -42,18 +51,21 @@ public:
     void setTitle(const std::string& title);
     void setSize(int width, int height);
 
-    // The GI context (ui/gi_thread.h): a hidden window's GL context shared with this one.
-    // bindGI(true) makes it current on the calling thread (any thread), bindGI(false) leaves the
-    // thread with none; bindUI() makes the window's own context current (the UI thread).
+    // The GI context (ui/gi_thread.h): an EGL context of its own, sharing nothing with the
+    // window's (ui/texture_bridge.h says why). bindGI(true) makes it current on the calling thread
+    // (any thread), bindGI(false) leaves the thread with none; bindUI() makes the window's own
+    // context current (the UI thread). Throws gi::Error when EGL refuses.
     void bindGI(bool current);
     void bindUI();
-    // Window's context: copies the texture's lower-left width x height texels (made in the GI
-    // context and finished there) into the back buffer at the same place, under the panels.
+    // Window's context: clears the back buffer and copies the texture's lower-left width x height
+    // texels into it at the same place, under the panels.
     void drawBackground(unsigned texture, int width, int height);
+    TextureBridge& bridge() { return *mBridge; }
 
 private:
     GLFWwindow* mWindow = nullptr;
-    GLFWwindow* mGIWindow = nullptr;  // hidden; only its context is used
+    std::unique_ptr<EGLContextHeadless> mGIContext;
+    std::unique_ptr<TextureBridge> mBridge;  // images from the GI context; its copies live in the window's
     unsigned mBackgroundFBO = 0;      // the window context's own (framebuffers are not shared)
     std::unique_ptr<KeyEventQueue> mKeys;  // GLFW's key events, handed to ImGui one change per key per frame
 };

@@ -58,6 +58,12 @@ EGLContextHeadless::~EGLContextHeadless() {
 
 std::string EGLContextHeadless::renderer() const { return glRendererString(); }
 
+void EGLContextHeadless::makeCurrent() const {
+    if (!eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, mContext)) throw Error("EGL: eglMakeCurrent failed " + eglErrorText());
+}
+
+void EGLContextHeadless::release() const { eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+
 std::string glRendererString() {
     const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const char* v = reinterpret_cast<const char*>(glGetString(GL_VERSION));

@@ -15,6 +15,10 @@ public:
     EGLContextHeadless& operator=(const EGLContextHeadless&) = delete;
 
     std::string renderer() const;
+    // Makes the context current on the calling thread (any thread), or leaves the thread with no
+    // EGL context. Throws gi::Error when EGL refuses.
+    void makeCurrent() const;
+    void release() const;
 
 private:
     void* mDisplay = nullptr;

@@ -6,6 +6,7 @@
 #include "ui/editor.h"
 #include "ui/panel_util.h"
 #include "ui/pass_panel.h"
+#include "ui/texture_bridge.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -201,7 +202,7 @@ public:
                 ctx.renderer->drawView(view, params);
                 glBindFramebuffer(GL_FRAMEBUFFER, 0);
             }
-            ImGui::Image(ImTextureID(intptr_t(mImage.id())), ImVec2(float(w), float(h)), ImVec2(0, 1), ImVec2(1, 0));
+            giImage(mImage, ImVec2(float(w), float(h)));
             const Environment::MipInfo& info = built[size_t(mSelected)];
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip(mLatLong ? "latlong: the centre looks along -z, +x at three quarters, the zenith at the top"

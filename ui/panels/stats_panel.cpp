@@ -13,7 +13,9 @@ namespace gi::ui {
 
 void Editor::statsPanel() {
     ImGui::TextWrapped("%s", mGLRenderer.c_str());
-    ImGui::Text("UI %.1f ms (%.1f fps), %dx%d", mFrameMs, mFrameMs > 0 ? 1000.0f / mFrameMs : 0.0f, mWidth, mHeight);
+    ImGui::Text("UI %.1f ms a frame, viewport %dx%d", mFrameMs, mWidth, mHeight);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the UI's work per frame; while the GI renders and nothing happens the UI waits for input, so the GI gets the cores");
     // The GI renders only when its image would change: say what the picture on screen is.
     const char* state = mPaused ? "paused" : giSettled() ? "up to date" : mGI.busy() ? "rendering" : mRenderSize != glm::ivec2(mWidth, mHeight) ? "preview" : "waiting";
     ImGui::Text("GI %.1f ms at %dx%d, %s", mRenderMs, mRenderSize.x, mRenderSize.y, state);

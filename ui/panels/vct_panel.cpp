@@ -4,6 +4,7 @@
 #include "ui/editor.h"
 #include "ui/panel_util.h"
 #include "ui/pass_panel.h"
+#include "ui/texture_bridge.h"
 
 #include <algorithm>
 
@@ -77,7 +78,7 @@ public:
                 glNamedFramebufferTexture(mFBO.id(), GL_COLOR_ATTACHMENT0, mImage.id(), 0);
             }
             render(ctx, frameSettings(ctx.preset, ctx.scene, ctx.width, ctx.height), mFBO.id(), w, h);
-            ImGui::Image(ImTextureID(intptr_t(mImage.id())), ImVec2(float(w), float(h)), ImVec2(0, 1), ImVec2(1, 0));
+            giImage(mImage, ImVec2(float(w), float(h)));
         }
         ImGui::End();
         if (!open) mDisplay = Display::Off;
