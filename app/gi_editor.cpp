@@ -101,7 +101,8 @@ int run(int argc, char** argv) {
     options.resizeWindow = [&window](int w, int h) { window.setSize(w, h); };
     // The GI renders on its own thread, in a context of its own (ui/gi_thread.h); the editor is
     // made in that context, and each UI frame hands it back and forth.
-    gi::ui::GIThread gi([&window](bool current) { window.bindGI(current); }, [&window] { window.bindUI(); }, &gi::ui::Window::wake);
+    gi::ui::GIThread gi([&window] { window.createGIContext(); }, [&window](bool current) { window.bindGI(current); },
+                        [&window] { window.bindUI(); }, &gi::ui::Window::wake);
     gi.acquire();
     gi::ui::Editor editor(options, gi);
     gi.release();

@@ -267,6 +267,7 @@ void Editor::collectResult() {
         mPreset = mGoodPreset;
         ++mLiveGeneration;
     }
+    ++mOutputGeneration;
     mPassStats = mRenderer.passStats();
     mMemoryBytes = mRenderer.memoryBytes();
     mPickPending = true;  // the focus pixel's surface, of the new frame
@@ -533,27 +534,37 @@ void Editor::renderViewport(bool interacting) {
             if (!mCompositeFBO) mCompositeFBO = gl::createFramebuffer();
             glNamedFramebufferTexture(mCompositeFBO.id(), GL_COLOR_ATTACHMENT0, mComposite.id(), 0);
         }
-        ViewportRect target = mViewport;
-        target.framebuffer = mCompositeFBO.id();
-        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
-        glViewport(0, 0, cw, ch);
-        glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        if (mRenderer.width() > 0) {
-            // Attached every frame: a resized output texture may reuse the old one's name.
-            glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
-            glBlitNamedFramebuffer(mOutputFBO.id(), target.framebuffer, 0, 0, mRenderer.width(), mRenderer.height(), mViewport.x, 0,
-                                   mViewport.x + width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
-            mPreviewer.drawViewport(&mRenderer, target);
-            PanelContext ctx = panelContext();
-            for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, target);
-            // The reference takes every core while the GI has nothing to render.
+        // The reference takes every core while the GI has nothing to render.
+        if (mRenderer.width() > 0)
             mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer, giIdle);
+        // Composed (and read back for the window) when the GI image or the layout changed, or on
+        // every frame while something else is drawn over the image.
+        bool overlaid = mPreviewer.fill() || mReference.enabled();
+        for (auto& [section, p] : mPanels) overlaid |= p->drawsViewport(fs);
+        const std::string composeKey = std::to_string(mOutputGeneration) + " " + std::to_string(cw) + "x" + std::to_string(ch) + " " +
+                                       std::to_string(mViewport.x) + " " + std::to_string(width) + "x" + std::to_string(height);
+        if (overlaid || composeKey != mComposedKey) {
+            mComposedKey = overlaid ? std::string() : composeKey;
+            ViewportRect target = mViewport;
+            target.framebuffer = mCompositeFBO.id();
+            glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+            glViewport(0, 0, cw, ch);
+            glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+            if (mRenderer.width() > 0) {
+                // Attached every frame: a resized output texture may reuse the old one's name.
+                glNamedFramebufferTexture(mOutputFBO.id(), GL_COLOR_ATTACHMENT0, mRenderer.outputTexture(), 0);
+                glBlitNamedFramebuffer(mOutputFBO.id(), target.framebuffer, 0, 0, mRenderer.width(), mRenderer.height(), mViewport.x, 0,
+                                       mViewport.x + width, height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+                mPreviewer.drawViewport(&mRenderer, target);
+                PanelContext ctx = panelContext();
+                for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, target);
+            }
+            glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+            mReference.drawViewport(target, true);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            textureBridge().id(mComposite);  // read back for the window
         }
-        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
-        mReference.drawViewport(target, true);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        textureBridge().id(mComposite);  // read back for the window
     } else {
         // The composite stands; what is drawn with the panels (labels, a readout) still follows the mouse.
         mPreviewer.drawViewport(nullptr, mViewport);

@@ -178,7 +178,9 @@ private:
     std::string mSubmittedKey;          // the frame in flight
     std::string mWantKey;               // liveKey() of what this frame asks the GI for (preview or full)
     std::string mFailedKey;             // the last frame that threw: not tried again as such
-    gl::Texture mComposite;             // the window's background (compositeTexture)
+    gl::Texture mComposite;             // the window's background (composite())
+    uint64_t mOutputGeneration = 0;     // grows with each GI frame taken (and each failed one)
+    std::string mComposedKey;           // what mComposite shows, when nothing is drawn over the GI image
     gl::Framebuffer mCompositeFBO;
     void collectResult();               // the finished GI frame, if one waits (context held)
     void submitIfNeeded();              // starts the next GI frame, or gives the context back

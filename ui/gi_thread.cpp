@@ -2,6 +2,10 @@
 
 #include <epoxy/gl.h>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 namespace gi::ui {
 
 namespace {
@@ -21,9 +25,18 @@ void finishCommands() {
 
 }  // namespace
 
-GIThread::GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI, std::function<void()> onDone)
+GIThread::GIThread(const std::function<void()>& createGI, std::function<void(bool)> bindGI, std::function<void()> bindUI,
+                   std::function<void()> onDone)
     : mBindGI(std::move(bindGI)), mBindUI(std::move(bindUI)), mOnDone(std::move(onDone)) {
-    mThread = std::thread([this] { loop(); });
+    mThread = std::thread([this, &createGI] { loop(createGI); });
+    std::unique_lock lock(mMutex);
+    mDone.wait(lock, [&] { return mStarted; });
+    if (mStartError) {
+        mStop = true;
+        lock.unlock();
+        mThread.join();
+        std::rethrow_exception(mStartError);
+    }
 }
 
 GIThread::~GIThread() {
@@ -79,8 +92,21 @@ void GIThread::release() {
     if (mHeld) handBack();
 }
 
-void GIThread::loop() {
+void GIThread::loop(const std::function<void()>& createGI) {
+    // Below the UI thread; threads started from here inherit it (a thread's nice value on Linux).
+    setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), getpriority(PRIO_PROCESS, 0) + kNice);
+    std::exception_ptr error;
+    try {
+        createGI();
+        mBindGI(false);
+    } catch (...) {
+        error = std::current_exception();
+    }
     std::unique_lock lock(mMutex);
+    mStarted = true;
+    mStartError = error;
+    mDone.notify_all();
+    if (error) return;
     for (;;) {
         mWake.wait(lock, [&] { return mStop || mJob; });
         if (mStop) return;

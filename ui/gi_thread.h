@@ -10,6 +10,7 @@
 #pragma once
 
 #include <condition_variable>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -18,10 +19,16 @@ namespace gi::ui {
 
 class GIThread {
 public:
-    // bindGI(true) makes the GI context current on the calling thread, bindGI(false) leaves the
-    // thread with none; bindUI() makes the window's context current on the UI thread.
-    // onDone (optional) is called on the worker when a job has finished (e.g. to wake the UI).
-    GIThread(std::function<void(bool)> bindGI, std::function<void()> bindUI, std::function<void()> onDone = {});
+    // createGI() makes the GI context; it runs on the worker, after the worker has lowered its own
+    // priority (nice + kNice), so the threads a GL driver starts with the context (llvmpipe's
+    // rasterizer) run below the UI too: the UI keeps its frame rate, the GI takes what is left.
+    // Its exception is rethrown here. bindGI(true) makes the GI context current on the calling
+    // thread, bindGI(false) leaves the thread with none; bindUI() makes the window's context
+    // current on the UI thread. onDone (optional) is called on the worker when a job has
+    // finished (e.g. to wake the UI).
+    GIThread(const std::function<void()>& createGI, std::function<void(bool)> bindGI, std::function<void()> bindUI,
+             std::function<void()> onDone = {});
+    static constexpr int kNice = 10;
     ~GIThread();  // waits for the job in flight
     GIThread(const GIThread&) = delete;
     GIThread& operator=(const GIThread&) = delete;
@@ -43,7 +50,7 @@ public:
     void release();
 
 private:
-    void loop();
+    void loop(const std::function<void()>& createGI);
     // Ends the UI thread's use of the GI context: the window's context current again.
     void handBack();
 
@@ -55,6 +62,8 @@ private:
     std::function<void()> mJob;  // the job waiting or running
     bool mRunning = false;       // a job is queued or running
     bool mStop = false;
+    bool mStarted = false;           // createGI has run
+    std::exception_ptr mStartError;  // and threw this
     bool mHeld = false;          // UI thread only
     std::thread mThread;
 };

@@ -41,6 +41,9 @@ public:
     // Into the viewport (its rectangle of ViewportRect::framebuffer) after the frame is drawn there;
     // only while the GI context is held.
     virtual void drawViewport(PanelContext&, const FrameSettings&, const ViewportRect&) {}
+    // Whether drawViewport draws anything with these settings (the viewport is then composed on
+    // every frame, not only when the GI image changes).
+    virtual bool drawsViewport(const FrameSettings&) const { return false; }
     // Its own windows.
     virtual void drawWindows(PanelContext&) {}
 };

@@ -31,15 +31,6 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
         glfwTerminate();
         throw NoDisplayError(message);
     }
-    // The GI context: EGL surfaceless, as gi-render's, with its own llvmpipe rasterizer.
-    try {
-        mGIContext = std::make_unique<EGLContextHeadless>(true);
-        mGIContext->release();
-    } catch (const std::exception& e) {
-        glfwDestroyWindow(mWindow);
-        glfwTerminate();
-        throw NoDisplayError(std::string("cannot make the GI's OpenGL context: ") + e.what());
-    }
     glfwMakeContextCurrent(mWindow);
     mBridge = std::make_unique<TextureBridge>();
     setTextureBridge(mBridge.get());
@@ -68,7 +59,7 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
 }
 
 Window::~Window() {
-    mGIContext->release();
+    if (mGIContext) mGIContext->release();
     glfwMakeContextCurrent(mWindow);
     if (mBackgroundFBO) glDeleteFramebuffers(1, &mBackgroundFBO);
     setTextureBridge(nullptr);
@@ -79,6 +70,15 @@ Window::~Window() {
     glfwDestroyWindow(mWindow);
     mGIContext.reset();
     glfwTerminate();
+}
+
+void Window::createGIContext() {
+    // EGL surfaceless, as gi-render's, with its own llvmpipe rasterizer.
+    try {
+        mGIContext = std::make_unique<EGLContextHeadless>(true);
+    } catch (const std::exception& e) {
+        throw NoDisplayError(std::string("cannot make the GI's OpenGL context: ") + e.what());
+    }
 }
 
 void Window::bindGI(bool current) {

@@ -57,6 +57,9 @@ public:
     // context current (the UI thread). Throws gi::Error when EGL refuses.
     void bindGI(bool current);
     void bindUI();
+    // Makes the GI context (any thread; ui/gi_thread.h calls it on its worker) and leaves it
+    // current there. Throws NoDisplayError when EGL cannot make it.
+    void createGIContext();
     // Window's context: clears the back buffer and copies the texture's lower-left width x height
     // texels into it at the same place, under the panels.
     void drawBackground(unsigned texture, int width, int height);

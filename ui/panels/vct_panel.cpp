@@ -58,8 +58,12 @@ public:
         return 0;
     }
 
+    bool drawsViewport(const FrameSettings& fs) const override {
+        return mDisplay == Display::Viewport && fs.technique == VCTSettings::kSection;
+    }
+
     void drawViewport(PanelContext& ctx, const FrameSettings& fs, const ViewportRect& viewport) override {
-        if (mDisplay != Display::Viewport || fs.technique != VCTSettings::kSection) return;
+        if (!drawsViewport(fs)) return;
         render(ctx, fs, viewport.framebuffer, viewport.width, viewport.height, viewport.x);
     }
 
