@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <string>
 
 namespace gi {
@@ -300,6 +301,43 @@ TEST(MetricsLeak, DarkRegionLitByTheTechnique) {
     Metrics m = compareImages(tech, ref);
     EXPECT_DOUBLE_EQ(m.leakFraction, leak.fraction);
     EXPECT_DOUBLE_EQ(m.leakEnergy, leak.energy);
+}
+
+// Two halves of a Monte Carlo image with a known per-sample noise: the estimate finds it.
+TEST(MetricsNoise, TwoHalvesGiveTheStandardErrorOfTheMean) {
+    const int w = 128, h = 128, nA = 5, nB = 11;
+    const double sigma = 0.3;  // per-sample noise, the same on r, g and b
+    std::mt19937 rng(7);
+    std::normal_distribution<double> noise(0.0, sigma);
+    ImageRGB a, b;
+    a.width = b.width = w;
+    a.height = b.height = h;
+    a.rgb.resize(size_t(w) * h * 3);
+    b.rgb.resize(a.rgb.size());
+    double meanTruth = 0.0;
+    for (int p = 0; p < w * h; ++p) {
+        const double truth = 0.2 + 0.8 * double(p % w) / double(w - 1);
+        meanTruth += truth;
+        auto halfMean = [&](int n) {
+            double sum = 0.0;
+            for (int i = 0; i < n; ++i) sum += truth + noise(rng);
+            return float(sum / n);
+        };
+        const float va = halfMean(nA), vb = halfMean(nB);
+        for (int c = 0; c < 3; ++c) {
+            a.rgb[size_t(p) * 3 + c] = va;
+            b.rgb[size_t(p) * 3 + c] = vb;
+        }
+    }
+    meanTruth /= double(w * h);
+    // Grey pixels: the luminance is the value, so the standard error of the 16-sample mean is sigma / 4.
+    const double expected = sigma / std::sqrt(double(nA + nB)) / meanTruth;
+    EXPECT_NEAR(relativeNoise(a, nA, b, nB), expected, 0.05 * expected);
+    // Halves that agree carry no measurable noise; a black image reports none.
+    EXPECT_EQ(relativeNoise(a, nA, a, nA), 0.0);
+    ImageRGB black = a;
+    std::fill(black.rgb.begin(), black.rgb.end(), 0.0f);
+    EXPECT_EQ(relativeNoise(black, 1, black, 1), 0.0);
 }
 
 TEST(MetricsLoad, PNGIsDecodedFromSRGB) {

@@ -1,5 +1,6 @@
 #include "ui/reference_job.h"
 
+#include "gi/metrics/metrics.h"
 #include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
 
@@ -95,23 +96,32 @@ void ReferenceJob::run() {
 
         const auto traceStart = Clock::now();
         const uint64_t raysBefore = tracer->raysTraced();
-        std::vector<double> sum;
-        int pass = 1;
+        std::vector<double> sums[2];  // alternate passes: two independent halves of the samples
+        int counts[2] = {0, 0};
+        int pass = 1, passIndex = 0;
         while (s.samplesDone < mSettings.spp && !mCancel) {
             int count = std::min(pass, mSettings.spp - s.samplesDone);
             bool complete = false;
+            std::vector<double>& sum = sums[passIndex % 2];
             (mAllCores ? all : spared).execute([&] { complete = tracer->trace(mFrame, mSettings, s.samplesDone, count, sum, &mCancel); });
             if (!complete) break;
+            counts[passIndex % 2] += count;
+            ++passIndex;
             s.samplesDone += count;
             pass = std::min(pass * 2, kMaxPassSamples);
 
-            auto image = std::make_shared<ImageRGB>();
-            image->width = mFrame.width;
-            image->height = mFrame.height;
-            image->rgb.resize(sum.size());
-            const double scale = 1.0 / s.samplesDone;
-            for (size_t i = 0; i < sum.size(); ++i) image->rgb[i] = float(sum[i] * scale);
-            s.image = std::move(image);
+            auto mean = [&](const std::vector<double>& a, const std::vector<double>& b, double n) {
+                auto image = std::make_shared<ImageRGB>();
+                image->width = mFrame.width;
+                image->height = mFrame.height;
+                image->rgb.resize(std::max(a.size(), b.size()));
+                for (size_t i = 0; i < image->rgb.size(); ++i)
+                    image->rgb[i] = float(((i < a.size() ? a[i] : 0.0) + (i < b.size() ? b[i] : 0.0)) / n);
+                return image;
+            };
+            s.image = mean(sums[0], sums[1], double(s.samplesDone));
+            if (counts[0] > 0 && counts[1] > 0)
+                s.noise = relativeNoise(*mean(sums[0], {}, counts[0]), counts[0], *mean(sums[1], {}, counts[1]), counts[1]);
             s.seconds = secondsSince(start);
             // Another job may share the tracer's ray counter for a tile or two after a restart.
             double traceSeconds = std::max(secondsSince(traceStart), 1e-6);

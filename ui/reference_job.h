@@ -1,7 +1,8 @@
 // A path-traced reference rendered progressively on a worker thread while the editor keeps
 // running. The job traces passes of growing size (1, 2, 4, ... up to kMaxPassSamples samples per
 // pixel) until the reference settings' spp, and publishes the running mean after each pass, so
-// the editor can show a noisy reference at once and a clean one later.
+// the editor can show a noisy reference at once and a clean one later. Alternate passes add into
+// two halves, whose difference estimates the noise left (ReferenceSnapshot::noise).
 //
 // Threads: the job owns one std::thread, and the path tracer's oneTBB work runs in a task arena
 // of hardware_concurrency - 1 slots (at least one), so one core stays free for the UI thread
@@ -36,6 +37,10 @@ struct ReferenceSnapshot {
     int samplesTotal = 0;
     double seconds = 0.0;        // since the job started, BVH build included
     double raysPerSecond = 0.0;  // over the tracing so far
+    // The noise left in the image (gi::relativeNoise of the passes' two halves, alternate passes
+    // in each): the RMS standard error of a pixel over the mean luminance; < 0 while unknown (one
+    // pass so far, or read from the cache).
+    double noise = -1.0;
     bool fromCache = false;
     std::string error;    // Failed: why (one line)
     std::string warning;  // Finished: the cache file could not be written

@@ -54,6 +54,14 @@ void coloredText(const ImVec4& color, const std::string& text) {
 
 void hint(const std::string& text) { coloredText(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled), text); }
 
+// The Reference panel's noise line, warning past 5 %.
+std::string formatNoise(double noise) {
+    char text[128];
+    std::snprintf(text, sizeof text, "reference noise %.1f %% (pixel RMS / mean)%s", noise * 100.0,
+                  noise > 0.05 ? ", needs more samples" : "");
+    return text;
+}
+
 std::string formatPSNR(double psnr) {
     if (!std::isfinite(psnr)) return "inf";
     char text[32];
@@ -300,6 +308,17 @@ void ReferencePanel::draw() {
         std::snprintf(progress, sizeof progress, "%d / %d samples, %.2f Mrays/s, %.1f s", done, total,
                       s ? s->raysPerSecond * 1e-6 : 0.0, s ? s->seconds : 0.0);
     ImGui::ProgressBar(total > 0 ? float(done) / float(total) : 0.0f, ImVec2(-FLT_MIN, 0.0f), progress);
+    // How far the reference itself may stand off its converged image: an SSIM against it cannot be
+    // trusted much beyond that.
+    if (s && s->noise >= 0.0) {
+        const ImVec4 colour = s->noise > 0.05 ? kWarningColor : ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled);
+        coloredText(colour, formatNoise(s->noise));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("the RMS standard error of a reference pixel over the mean brightness, from the difference of two\n"
+                              "halves of its samples (alternate passes); it falls as 1/sqrt(spp): 4x the samples halve it");
+    } else if (s && s->fromCache) {
+        hint("noise: not known for a cached reference");
+    }
 
     if (mStale) {
         coloredText(kWarningColor, "view changed: restarting when it holds still");
@@ -395,7 +414,12 @@ std::string ReferencePanel::summary() const {
         std::snprintf(text, sizeof text, "reference %d/%d spp: SSIM %.4f, score %.3g, RMSE %.4f, PSNR %s", done, total,
                       mMetrics.ssim, mMetrics.score, mMetrics.rmse, formatPSNR(mMetrics.psnr).c_str());
     }
-    return text;
+    std::string out = text;
+    if (mSnapshot && mSnapshot->noise >= 0.0) {
+        std::snprintf(text, sizeof text, ", reference noise %.1f %%", mSnapshot->noise * 100.0);
+        out += text;
+    }
+    return out;
 }
 
 }  // namespace gi::ui

@@ -211,6 +211,24 @@ double brightnessRatio(const ImageRGB& image, const ImageRGB& reference) {
     return ref > 0.0 ? meanLuminance(image) / ref : 0.0;
 }
 
+double relativeNoise(const ImageRGB& halfA, int nA, const ImageRGB& halfB, int nB) {
+    requireSameSize(halfA, halfB);
+    GI_ASSERT(nA >= 1 && nB >= 1, "each half holds at least one sample");
+    const size_t pixels = pixelCount(halfA);
+    if (pixels == 0) return 0.0;
+    const double pair = 1.0 / nA + 1.0 / nB, n = double(nA) + double(nB);
+    double variance = 0.0, mean = 0.0;
+    for (size_t p = 0; p < pixels; ++p) {
+        const double a = luminance(&halfA.rgb[p * 3]), b = luminance(&halfB.rgb[p * 3]);
+        const double d = a - b;
+        variance += d * d / pair / n;  // the per-sample variance over n: the variance of the full mean
+        mean += (a * nA + b * nB) / n;
+    }
+    variance /= double(pixels);
+    mean /= double(pixels);
+    return mean > 0.0 ? std::sqrt(variance) / mean : 0.0;
+}
+
 Metrics compareImages(const ImageRGB& image, const ImageRGB& reference, const SSIMOptions& options) {
     requireSameSize(image, reference);
     Metrics m;

@@ -152,6 +152,14 @@ struct Metrics {
 // Mean luminance of `image` over that of `reference` (0 when the reference is black).
 double brightnessRatio(const ImageRGB& image, const ImageRGB& reference);
 
+// The noise left in a Monte Carlo image, estimated from two independent halves of its samples:
+// `halfA` the mean of nA samples per pixel, `halfB` of nB. Per pixel, the luminance difference d
+// of the halves has variance s^2 (1/nA + 1/nB), which gives the per-sample variance s^2; the mean
+// of all nA + nB samples has variance s^2 / (nA + nB). Returns the RMS over pixels of that
+// standard error over the image's mean luminance (0.02: pixels stand about 2 % of the average
+// brightness off their converged values), 0 for a black image. Sizes must match; nA, nB >= 1.
+double relativeNoise(const ImageRGB& halfA, int nA, const ImageRGB& halfB, int nB);
+
 // Every metric; the leak measure treats the two images as indirect images. Sizes must match.
 Metrics compareImages(const ImageRGB& image, const ImageRGB& reference, const SSIMOptions& options = {});
 
