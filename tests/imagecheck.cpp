@@ -1,12 +1,36 @@
 // gi-imagecheck FILE WIDTH HEIGHT: exits 0 when the image has that size and shows content: the
 // centre region is not black and the image is not one flat colour.
+// gi-imagecheck --halves FILE: prints "left L right R", the mean grey level (0..255) of the
+// image's left and right halves, for tests that compare the two sides of a split.
 #include "gi/render/image_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 int main(int argc, char** argv) {
+    if (argc == 3 && std::string(argv[1]) == "--halves") {
+        try {
+            gi::ImageRGBA8 img = gi::readImage8(argv[2]);
+            double sums[2] = {0, 0};
+            size_t counts[2] = {0, 0};
+            for (int y = 0; y < img.height; ++y)
+                for (int x = 0; x < img.width; ++x) {
+                    const uint8_t* p = &img.rgba[(size_t(y) * img.width + x) * 4];
+                    const int side = x < img.width / 2 ? 0 : 1;
+                    sums[side] += (p[0] + p[1] + p[2]) / 3.0;
+                    ++counts[side];
+                }
+            std::printf("left %.2f right %.2f\n", sums[0] / double(std::max<size_t>(counts[0], 1)),
+                        sums[1] / double(std::max<size_t>(counts[1], 1)));
+            return 0;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "imagecheck: %s\n", e.what());
+            return 1;
+        }
+    }
     if (argc != 4) {
         std::fprintf(stderr, "usage: gi-imagecheck FILE WIDTH HEIGHT\n");
         return 2;

@@ -156,6 +156,7 @@ void Editor::helpWindow() {
             {"F1", "this window"},
             {"F12", "screenshot: the window and the viewport as PNGs in the current folder"},
             {"P", "pause or resume the GI (the last image stays)"},
+            {"F", "flip between A and the live image (compare A/B, once A is held)"},
             {"Ctrl+Z", "undo the last settings change (a drag, a typed value or a camera flight)"},
             {"Ctrl+Shift+Z, Ctrl+Y", "redo"},
             {"right drag in the viewport", "look around"},
@@ -218,6 +219,9 @@ void Editor::frame(int width, int height, float dt, float workMs) {
 
     // F1: help; F12: a screenshot of the window and of the viewport, named after the time.
     if (ImGui::IsKeyPressed(290 /* GLFW_KEY_F1 */, false)) mShowHelp = !mShowHelp;
+    // F flips between A and the live image (B) once A is held.
+    if (!io.WantTextInput && !io.KeyCtrl && mSnapshotA && ImGui::IsKeyPressed('F', false))  // GLFW_KEY_F
+        mCompareView = mCompareView == CompareView::A ? CompareView::Live : CompareView::A;
     if (ImGui::IsKeyPressed(301 /* GLFW_KEY_F12 */, false)) requestScreenshot();
 
     mRendered.reset();
@@ -238,7 +242,8 @@ void Editor::frame(int width, int height, float dt, float workMs) {
     recordEdit(cameraMoved);
     // A script acts from the second frame on, one action per frame, each once the GI shows what
     // the last one asked for, as a user would.
-    if (mFrames++ > 0 && mScriptNext < mScript.size() && giCaughtUp()) {
+    const bool waitingForReference = mScriptNext < mScript.size() && mScript[mScriptNext] == "wait-reference" && !mReference.settled();
+    if (mFrames++ > 0 && mScriptNext < mScript.size() && giCaughtUp() && !waitingForReference) {
         runAction(mScript[mScriptNext++]);
         recordEdit(false);
     }
@@ -413,9 +418,19 @@ void Editor::runAction(const std::string& action) {
     } else if (verb == "screenshot") {
         if (arg.empty()) throw Error("script: screenshot takes a path (PATH-window.png and PATH-viewport.png are written)");
         mScreenshotRequest = fs::path(arg);
+    } else if (verb == "hold") {
+        mHoldRequested = true;
+    } else if (verb == "compare") {
+        if (!mSnapshotA) throw Error("script: compare needs A held first (hold)");
+        if (arg == "live" || arg == "b") mCompareView = CompareView::Live;
+        else if (arg == "a") mCompareView = CompareView::A;
+        else if (arg == "split") mCompareView = CompareView::Split;
+        else throw Error("script: compare takes live, a or split: '" + arg + "'");
+    } else if (verb == "diff-file") {
+        diffWithFile(arg);
     } else if (verb == "help") {
         mShowHelp = !mShowHelp;
-    } else if (verb == "wait") {
+    } else if (verb == "wait" || verb == "wait-reference") {  // wait-reference ran once the reference settled
         // Nothing: a frame as a user who is looking at the picture.
     } else if (verb == "pause" || verb == "resume") {
         mPaused = verb == "pause";
@@ -460,6 +475,7 @@ json Editor::state() const {
             {"rightColumnX", int(mRightColumnX)},
             {"viewport", {mViewport.x, mViewport.width, mViewport.height}},
             {"giSettled", giSettled()},
+            {"compare", compareState()},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
 }
 
@@ -534,12 +550,16 @@ void Editor::renderViewport(bool interacting) {
             if (!mCompositeFBO) mCompositeFBO = gl::createFramebuffer();
             glNamedFramebufferTexture(mCompositeFBO.id(), GL_COLOR_ATTACHMENT0, mComposite.id(), 0);
         }
+        if (mHoldRequested && mRenderedKey == mLiveKey && mRenderer.width() > 0) {
+            holdSnapshot();
+            mHoldRequested = false;
+        }
         // The reference takes every core while the GI has nothing to render.
         if (mRenderer.width() > 0)
             mReference.update(mScene, mSceneGeneration, mLiveGeneration, fs, mPreset.reference, mRenderer, giIdle);
         // Composed (and read back for the window) when the GI image or the layout changed, or on
         // every frame while something else is drawn over the image.
-        bool overlaid = mPreviewer.fill() || mReference.enabled();
+        bool overlaid = mPreviewer.fill() || mReference.enabled() || comparing();
         for (auto& [section, p] : mPanels) overlaid |= p->drawsViewport(fs);
         const std::string composeKey = std::to_string(mOutputGeneration) + " " + std::to_string(cw) + "x" + std::to_string(ch) + " " +
                                        std::to_string(mViewport.x) + " " + std::to_string(width) + "x" + std::to_string(height);
@@ -561,6 +581,8 @@ void Editor::renderViewport(bool interacting) {
                 for (auto& [section, p] : mPanels) p->drawViewport(ctx, fs, target);
             }
             glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+            drawComparison(target, true);
+            glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
             mReference.drawViewport(target, true);
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             textureBridge().id(mComposite);  // read back for the window
@@ -568,6 +590,7 @@ void Editor::renderViewport(bool interacting) {
     } else {
         // The composite stands; what is drawn with the panels (labels, a readout) still follows the mouse.
         mPreviewer.drawViewport(nullptr, mViewport);
+        drawComparison(mViewport, false);
         mReference.drawViewport(mViewport, false);
     }
 }
@@ -677,6 +700,7 @@ void Editor::drawPanels() {
         }
         if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) cost |= scenePanel();
         if (ImGui::CollapsingHeader("presets", ImGuiTreeNodeFlags_DefaultOpen)) presetsPanel();
+        if (ImGui::CollapsingHeader("compare A/B", mSnapshotA ? ImGuiTreeNodeFlags_DefaultOpen : 0)) comparePanel();
         if (mOpenLights) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
         bool lightsOpen = ImGui::CollapsingHeader("lights");
         if (mScrollToLights > 0) {

@@ -84,7 +84,8 @@ public:
     // One scripted action, through the same functions the panels and shortcuts call:
     //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
     //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT | bookmark NAME | goto NAME | camera N |
-    //   screenshot PATH (PATH-window.png and PATH-viewport.png) | help
+    //   screenshot PATH (PATH-window.png and PATH-viewport.png) | help | hold (A, once the GI is up to date) |
+    //   compare live|a|split | diff-file PATH | wait-reference (until the Reference panel's job is done)
     // (drag: the value set mid-drag; the drag lasts until the next other action, so the GI previews until then)
     // The editor runs the script one action per frame, each once the GI has caught up (giCaughtUp).
     // Throws gi::Error for an unknown action.
@@ -257,6 +258,32 @@ private:
     uint8_t cameraTools();  // beside the generated camera fields
     uint8_t lightsPanel();
     void statsPanel();
+    // A/B comparison (ui/panels/compare_panel.cpp): A holds an image of the GI with its settings,
+    // its GI ms and its SSIM against the reference then; the viewport shows the live image (B), A,
+    // or a split (A left of the line, B right of it); the settings that differ are listed, and so
+    // are those between the editor and any preset file.
+    struct Snapshot {
+        gl::Texture image;  // the renderer's output when held (GI context)
+        Preset preset;
+        float ms = 0.0f;
+        glm::ivec2 size{0};
+        std::optional<double> ssim;  // against the reference at the time
+    };
+    enum class CompareView { Live, A, Split };
+    std::optional<Snapshot> mSnapshotA;
+    CompareView mCompareView = CompareView::Live;
+    float mCompareSplit = 0.5f;
+    bool mHoldRequested = false;    // A is taken once the GI shows the current settings
+    gl::Framebuffer mSnapshotFBO;   // wraps A's image for the blit
+    std::string mDiffPath;          // the preset file the editor's settings are compared with
+    std::optional<std::vector<PresetChange>> mFileDiff;
+    std::string mDiffError;
+    void comparePanel();
+    void holdSnapshot();            // context held, the image up to date
+    bool comparing() const { return mSnapshotA && mCompareView != CompareView::Live; }
+    void drawComparison(const ViewportRect& target, bool drawImages);  // A over the composite, the labels
+    void diffWithFile(const std::filesystem::path& path);
+    json compareState() const;  // for state(): whether A is held, the view, the keys A -> B and file -> editor
     PanelContext panelContext();
     PassPanel* panel(std::string_view section) const;
     // Under each pass's section: its notes and the switches of its previewers.

@@ -28,6 +28,7 @@
 #include <chrono>
 #include <future>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,8 @@ public:
     ~ReferencePanel();
 
     bool enabled() const { return mEnabled; }
+    // The live image's SSIM against the reference, when metrics of the current view are shown.
+    std::optional<double> ssim() const { return mEnabled && mHaveMetrics && !mStale ? std::optional<double>(mMetrics.ssim) : std::nullopt; }
     void setEnabled(bool enabled) { mEnabled = enabled; }
     void setView(ReferenceView view) { mView = view; }
 
