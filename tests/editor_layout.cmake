@@ -6,7 +6,8 @@
 # -DEDITOR, -DCHECKER and -DWORK (a scratch folder) come from tests/CMakeLists.txt.
 include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 file(WRITE ${WORK}/layout.json
-  "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2}\n")
+  "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2, "
+  "\"sections\": {\"presets\": false, \"lpv\": true}}\n")
 file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
 execute_process(
   COMMAND ${XVFB_RUN} -a -s "-screen 0 1400x900x24" ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
@@ -50,3 +51,13 @@ string(JSON savedLeft GET "${saved}" leftWidth)
 string(JSON savedPreview GET "${saved}" dragPreview)
 string(JSON cones GET "${saved}" previewers vct.cones)
 expect("saved layout (leftWidth, dragPreview, vct.cones)" "${savedLeft} ${savedPreview} ${cones}" "380.0 2 ON")
+# Sections open or closed as the layout file had them (presets closed, lpv open, against their
+# defaults), and written back.
+string(JSON open GET "${stats}" editor openSections)
+string(REGEX REPLACE "[ \n]" "" open "${open}")
+if(open MATCHES "\"presets\"" OR NOT open MATCHES "\"lpv\"" OR NOT open MATCHES "\"scene\"")
+  message(FATAL_ERROR "open sections ${open}: expected lpv and scene open, presets closed (from the layout file)")
+endif()
+string(JSON savedPresets GET "${saved}" sections presets)
+string(JSON savedLpv GET "${saved}" sections lpv)
+expect("saved sections (presets, lpv)" "${savedPresets} ${savedLpv}" "OFF ON")

@@ -104,6 +104,8 @@ void Editor::loadLayout() {
         mPreviewer.setView(j.value("view", mPreviewer.view()));
         mPreviewer.setFill(j.value("fillView", mPreviewer.fill()));
         mPreviewDivisor = std::clamp(j.value("dragPreview", mPreviewDivisor), 1, 8);
+        const json sections = j.value("sections", json::object());
+        for (auto it = sections.begin(); it != sections.end(); ++it) mSectionOpen[it.key()] = it.value().get<bool>();
     } catch (const std::exception& e) {
         mPresetError = "layout " + mLayoutFile.string() + " ignored: " + e.what();
     }
@@ -113,7 +115,9 @@ void Editor::saveLayout() const {
     if (mLayoutFile.empty()) return;
     json previewers = json::object();
     for (const auto& [name, shown] : mShowPreviewer) previewers[name] = shown;
-    json j = {{"leftWidth", mLeftWidth}, {"rightWidth", mRightWidth}, {"previewers", previewers},
+    json sections = json::object();
+    for (const auto& [name, open] : mSectionOpen) sections[name] = open;
+    json j = {{"leftWidth", mLeftWidth}, {"rightWidth", mRightWidth}, {"previewers", previewers}, {"sections", sections},
               {"view", mPreviewer.view()},  {"fillView", mPreviewer.fill()}, {"dragPreview", mPreviewDivisor}};
     std::error_code ec;
     fs::create_directories(mLayoutFile.parent_path(), ec);
@@ -476,6 +480,7 @@ json Editor::state() const {
             {"viewport", {mViewport.x, mViewport.width, mViewport.height}},
             {"giSettled", giSettled()},
             {"compare", compareState()},
+            {"openSections", openSections()},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
 }
 
@@ -698,11 +703,10 @@ void Editor::drawPanels() {
             if (ImGui::SmallButton("Dismiss")) mFrameError.clear();
             ImGui::Separator();
         }
-        if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) cost |= scenePanel();
-        if (ImGui::CollapsingHeader("presets", ImGuiTreeNodeFlags_DefaultOpen)) presetsPanel();
-        if (ImGui::CollapsingHeader("compare A/B", mSnapshotA ? ImGuiTreeNodeFlags_DefaultOpen : 0)) comparePanel();
-        if (mOpenLights) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-        bool lightsOpen = ImGui::CollapsingHeader("lights");
+        if (section("scene", true)) cost |= scenePanel();
+        if (section("presets", true)) presetsPanel();
+        if (section("compare A/B", bool(mSnapshotA))) comparePanel();
+        bool lightsOpen = section("lights", false, mOpenLights);
         if (mScrollToLights > 0) {
             ImGui::SetScrollHereY(0.0f);
             --mScrollToLights;
@@ -717,7 +721,7 @@ void Editor::drawPanels() {
             PassPanel* own = panel(S::kSection);
             bool open = S::kSection == "render" || S::kSection == "toneMap" || mPreset.header.technique == S::kSection ||
                         (own && own->openAtStart());
-            if (!ImGui::CollapsingHeader(S::kSection.data(), open ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
+            if (!this->section(S::kSection.data(), open)) return;
             const std::string prefix = std::string(S::kSection) + ".";
             bool offDefault = false;
             for (auto it = defaults.lower_bound(prefix); !offDefault && it != defaults.end() && it->first.rfind(prefix, 0) == 0; ++it) {
@@ -752,15 +756,19 @@ void Editor::drawPanels() {
         mRightColumnX = ImGui::GetWindowPos().x;
         ImGui::End();
     };
-    column("Stats", 0.0f, kStatsHeight, 0, [&] { statsPanel(); });
+    // In a short window Stats and Reference give up height (they scroll), so the previewer keeps
+    // at least a third of the column.
+    const float statsHeight = std::min(kStatsHeight, std::floor(0.36f * display.y));
+    const float referenceHeight = std::min(kReferenceHeight, std::floor(0.3f * display.y));
+    column("Stats", 0.0f, statsHeight, 0, [&] { statsPanel(); });
     // The wheel zooms the image, so it must not scroll the window.
-    column("Buffer previewer", kStatsHeight, std::max(display.y - kStatsHeight - kReferenceHeight, 64.0f),
+    column("Buffer previewer", statsHeight, std::max(display.y - statsHeight - referenceHeight, 64.0f),
            ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse, [&] {
                ImGui::PushItemWidth(-kLabelWidth * 0.6f);
                mPreviewer.draw(mLive ? &mRenderer : nullptr);
                ImGui::PopItemWidth();
            });
-    column("Reference", display.y - kReferenceHeight, kReferenceHeight, 0, [&] {
+    column("Reference", display.y - referenceHeight, referenceHeight, 0, [&] {
         ImGui::PushItemWidth(-kLabelWidth * 0.6f);
         mReference.draw();
         ImGui::PopItemWidth();
@@ -771,6 +779,15 @@ void Editor::drawPanels() {
     previewerWindows(frame, previewers);
     helpWindow();
     apply(cost);
+}
+
+bool Editor::section(const char* name, bool defaultOpen, bool forceOpen) {
+    // The user's layout decides at the first appearance; --lights-panel and the like open theirs.
+    if (auto it = mSectionOpen.find(name); it != mSectionOpen.end()) ImGui::SetNextItemOpen(it->second, ImGuiCond_Once);
+    if (forceOpen) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    const bool open = ImGui::CollapsingHeader(name, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+    mSectionOpen[name] = open;
+    return open;
 }
 
 PanelContext Editor::panelContext() { return {mPreset, mScene, mLive ? &mRenderer : nullptr, mFrameError, mWidth, mHeight}; }

@@ -253,6 +253,16 @@ private:
     void scanFiles();
 
     void drawPanels();
+    // A section of the left column (a collapsing header), open as the user's layout last had it,
+    // else as `defaultOpen` says; `forceOpen` opens it at the start whatever the layout says.
+    bool section(const char* name, bool defaultOpen, bool forceOpen = false);
+    std::map<std::string, bool> mSectionOpen;  // the left column's sections, open or closed (saved in the layout)
+    json openSections() const {
+        json open = json::array();
+        for (const auto& [name, isOpen] : mSectionOpen)
+            if (isOpen) open.push_back(name);
+        return open;
+    }
     uint8_t scenePanel();
     void presetsPanel();
     uint8_t cameraTools();  // beside the generated camera fields
