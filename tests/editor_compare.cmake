@@ -15,14 +15,7 @@ screenshot ${WORK}/a
 diff-file ${PRESETS}/vct_cornell.json
 wait
 ")
-execute_process(
-  COMMAND ${XVFB_RUN} -a -s "-screen 0 1200x600x24" ${EDITOR} --width 1100 --height 500
-          --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
-message("${out}${err}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "gi-editor exited with ${rc}")
-endif()
+run_under_xvfb(1200x600x24 ${EDITOR} --width 1100 --height 500 --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json)
 file(READ ${WORK}/stats.json stats)
 string(JSON held GET "${stats}" editor compare held)
 expect("A held" "${held}" "ON")

@@ -1,21 +1,13 @@
 # Key taps during slow frames reach the UI (issue 14 item 1): see tests/editor_keys.sh.
 # -DEDITOR, -DPRESET (a copy is edited), -DWORK and -DDRIVER come from tests/CMakeLists.txt.
-find_program(XVFB_RUN xvfb-run)
+include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 find_program(XDOTOOL xdotool)
-if(NOT XVFB_RUN OR NOT XDOTOOL)
-  message(FATAL_ERROR "xvfb-run or xdotool not found: run scripts/install-deps.sh")
+if(NOT XDOTOOL)
+  message(FATAL_ERROR "xdotool not found: run scripts/install-deps.sh")
 endif()
-file(REMOVE_RECURSE ${WORK})
-file(MAKE_DIRECTORY ${WORK})
 file(COPY ${PRESET} DESTINATION ${WORK})
 get_filename_component(name ${PRESET} NAME)
-execute_process(
-  COMMAND ${XVFB_RUN} -a -s "-screen 0 640x480x24" ${DRIVER} ${EDITOR} ${WORK}/${name} ${WORK}/stats.json
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
-message("${out}${err}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "gi-editor exited with ${rc}")
-endif()
+run_under_xvfb(640x480x24 ${DRIVER} ${EDITOR} ${WORK}/${name} ${WORK}/stats.json)
 file(READ ${WORK}/stats.json stats)
 string(JSON field GET "${stats}" editor pathField)
 string(REGEX REPLACE ".$" "" expected "${WORK}/${name}")

@@ -9,14 +9,8 @@ file(WRITE ${WORK}/layout.json
   "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2, "
   "\"sections\": {\"presets\": false, \"lpv\": true}}\n")
 file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
-execute_process(
-  COMMAND ${XVFB_RUN} -a -s "-screen 0 1400x900x24" ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
-          --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json --screenshot ${WORK}/resized.png
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
-message("${out}${err}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "gi-editor exited with ${rc}")
-endif()
+run_under_xvfb(1400x900x24 ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
+               --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json --screenshot ${WORK}/resized.png)
 file(READ ${WORK}/stats.json stats)
 string(JSON w GET "${stats}" editor window 0)
 string(JSON h GET "${stats}" editor window 1)
