@@ -175,5 +175,27 @@ TEST(Settings, DiffReportsTheCostOfChangedFields) {
     EXPECT_EQ(diff(a, c), uint8_t(Cost::Uniform));
 }
 
+// Labels in words: camelCase splits and lowers, acronyms and a lone trailing capital stay; every
+// key of every section gives a non-empty label with no double spaces.
+TEST(Settings, ReadableKeys) {
+    EXPECT_EQ(readableKey("shadowMapSize"), "shadow map size");
+    EXPECT_EQ(readableKey("memoryBudgetMB"), "memory budget MB");
+    EXPECT_EQ(readableKey("SHOrder"), "SH order");
+    EXPECT_EQ(readableKey("fovY"), "fov Y");
+    EXPECT_EQ(readableKey("pcfRadius"), "pcf radius");
+    EXPECT_EQ(readableKey("gridResolution"), "grid resolution");
+    EXPECT_EQ(readableKey("enabled"), "enabled");
+    EXPECT_EQ(readableKey("level2Scale"), "level2 scale");
+    Preset p;
+    p.forEachSection([](auto& section) {
+        section.visit([](auto&, const FieldMeta& m) {
+            const std::string label = readableKey(m.key);
+            EXPECT_FALSE(label.empty()) << m.key;
+            EXPECT_EQ(label.find("  "), std::string::npos) << m.key;
+            EXPECT_EQ(label.size(), std::string(m.key).size() + size_t(std::count(label.begin(), label.end(), ' '))) << m.key;
+        });
+    });
+}
+
 }  // namespace
 }  // namespace gi

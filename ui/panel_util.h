@@ -17,7 +17,7 @@ inline constexpr float kMargin = 8.0f, kLeftWidth = 330.0f, kRightWidth = 340.0f
 inline constexpr float kMaxFlyStepSeconds = 0.1f;  // the most flight one frame applies, however slow it was
 inline constexpr float kMinColumnWidth = 200.0f;   // a docked column can be dragged no narrower
 inline constexpr float kReferenceHeight = 205.0f;  // the Reference panel, at the bottom of the right column
-inline constexpr float kLabelWidth = 110.0f;       // room for the longest settings key beside its widget
+inline constexpr float kLabelWidth = 135.0f;       // room for a setting's name in words beside its widget
 inline constexpr float kSideWindowWidth = 250.0f;  // a pass's own window, beside the Stats window over the viewport
 
 void wrappedText(const ImVec4& color, const std::string& text);

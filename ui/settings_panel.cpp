@@ -89,13 +89,24 @@ void readOnlyTooltip(const FieldMeta& m, const char* reason) {
     ImGui::EndTooltip();
 }
 
+std::string fieldLabel(const FieldMeta& m) { return readableKey(m.key) + "##" + m.key; }
+
+std::string unitFormat(const char* number, const FieldMeta& m) {
+    std::string format = number;
+    if (!*m.unit) return format;
+    format += ' ';
+    for (const char* u = m.unit; *u; ++u) format += *u == '%' ? std::string("%%") : std::string(1, *u);
+    return format;
+}
+
 bool drawField(float& value, const FieldMeta& m) {
     float v = value;
     bool changed;
+    const std::string label = fieldLabel(m);
     if (m.step == 0 && span(m) <= 100)
-        changed = ImGui::SliderFloat(m.key, &v, lowEnd(m), highEnd(m), "%.3f", kDragFlags);
+        changed = ImGui::SliderFloat(label.c_str(), &v, lowEnd(m), highEnd(m), unitFormat("%.3f", m).c_str(), kDragFlags);
     else
-        changed = ImGui::DragFloat(m.key, &v, dragSpeed(m, v), lowEnd(m), highEnd(m), "%.4g", kDragFlags);
+        changed = ImGui::DragFloat(label.c_str(), &v, dragSpeed(m, v), lowEnd(m), highEnd(m), unitFormat("%.4g", m).c_str(), kDragFlags);
     fieldTooltip(m, true);
     if (!changed) return false;
     value = std::clamp(v, lowEnd(m), highEnd(m));
@@ -107,7 +118,7 @@ bool drawField(int& value, const FieldMeta& m) {
     int hi = std::isfinite(m.max) ? int(m.max) : INT_MAX / 2;
     float speed = m.step > 0 ? float(m.step) : std::max(0.2f, 0.005f * float(std::abs(value)));
     int v = value;
-    bool changed = ImGui::DragInt(m.key, &v, speed, lo, hi, "%d", ImGuiSliderFlags_AlwaysClamp);
+    bool changed = ImGui::DragInt(fieldLabel(m).c_str(), &v, speed, lo, hi, unitFormat("%d", m).c_str(), ImGuiSliderFlags_AlwaysClamp);
     fieldTooltip(m, true);
     if (!changed) return false;
     value = std::clamp(v, lo, hi);
@@ -115,13 +126,13 @@ bool drawField(int& value, const FieldMeta& m) {
 }
 
 bool drawField(bool& value, const FieldMeta& m) {
-    bool changed = ImGui::Checkbox(m.key, &value);
+    bool changed = ImGui::Checkbox(fieldLabel(m).c_str(), &value);
     fieldTooltip(m, false);
     return changed;
 }
 
 bool drawField(std::string& value, const FieldMeta& m) {
-    ImGui::InputText(m.key, &value);
+    ImGui::InputText(fieldLabel(m).c_str(), &value);
     fieldTooltip(m, false);
     // Report the edit once it is complete (Enter or focus lost), not on every keystroke: a
     // half-typed scene path must not trigger a reload.
@@ -132,10 +143,10 @@ bool drawField(glm::vec3& value, const FieldMeta& m) {
     glm::vec3 v = value;
     bool changed;
     if (isColor(m))
-        changed = ImGui::ColorEdit3(m.key, &v.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+        changed = ImGui::ColorEdit3(fieldLabel(m).c_str(), &v.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
     else
-        changed = ImGui::DragFloat3(m.key, &v.x, dragSpeed(m, std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)})),
-                                    lowEnd(m), highEnd(m), "%.3f", kDragFlags);
+        changed = ImGui::DragFloat3(fieldLabel(m).c_str(), &v.x, dragSpeed(m, std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)})),
+                                    lowEnd(m), highEnd(m), unitFormat("%.3f", m).c_str(), kDragFlags);
     fieldTooltip(m, true);
     if (!changed) return false;
     value = glm::clamp(v, glm::vec3(lowEnd(m)), glm::vec3(highEnd(m)));
@@ -146,7 +157,7 @@ bool drawField(std::vector<float>& value, const FieldMeta& m) {
     // A tree node of one drag per entry; entries are not added or removed here (a panel that
     // owns the list, e.g. the roughness mips, does that).
     bool changed = false;
-    bool open = ImGui::TreeNode(m.key, "%s (%zu)", m.key, value.size());
+    bool open = ImGui::TreeNode(m.key, "%s (%zu)", readableKey(m.key).c_str(), value.size());
     fieldTooltip(m, true);
     if (!open) return false;
     for (size_t i = 0; i < value.size(); ++i) {

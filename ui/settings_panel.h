@@ -15,8 +15,14 @@
 
 namespace gi::ui {
 
-// One widget per field type, labelled with the key. Each returns true when the user changed the
-// value; the value is then already clamped to the field's range.
+// The widget label "words##key" (gi::readableKey's words; the ImGui ID stays the key's).
+std::string fieldLabel(const FieldMeta& m);
+// A number's printf format with the field's unit after it ("%.3f m"; "%" escaped).
+std::string unitFormat(const char* number, const FieldMeta& m);
+
+// One widget per field type, labelled with the key in words; a number shows its unit in the
+// widget. Each returns true when the user changed the value; the value is then already clamped
+// to the field's range.
 bool drawField(float& value, const FieldMeta& m);
 bool drawField(int& value, const FieldMeta& m);
 bool drawField(bool& value, const FieldMeta& m);
@@ -32,7 +38,7 @@ void readOnlyTooltip(const FieldMeta& m, const char* reason);
 template <ReflectedEnum E>
 bool drawField(E& value, const FieldMeta& m) {
     bool changed = false;
-    bool open = ImGui::BeginCombo(m.key, enumName(value));
+    bool open = ImGui::BeginCombo(fieldLabel(m).c_str(), enumName(value));
     fieldTooltip(m, false);
     if (open) {
         for (const auto& [v, name] : EnumNames<E>::values) {
@@ -49,7 +55,7 @@ bool drawField(E& value, const FieldMeta& m) {
 template <ChoiceString T>
 bool drawField(T& value, const FieldMeta& m) {
     bool changed = false;
-    bool open = ImGui::BeginCombo(m.key, value.name.c_str());
+    bool open = ImGui::BeginCombo(fieldLabel(m).c_str(), value.name.c_str());
     fieldTooltip(m, false);
     if (open) {
         for (const std::string& name : T::choices()) {

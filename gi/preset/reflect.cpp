@@ -1,11 +1,33 @@
 #include "gi/preset/reflect.h"
 
+#include <cctype>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
 
 namespace gi {
+
+std::string readableKey(std::string_view key) {
+    auto isUpper = [](char c) { return std::isupper(static_cast<unsigned char>(c)) != 0; };
+    auto isLowerOrDigit = [](char c) { return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)); };
+    std::string out;
+    const size_t n = key.size();
+    for (size_t i = 0; i < n; ++i) {
+        const char c = key[i];
+        const bool upper = isUpper(c);
+        const bool prevLower = i > 0 && isLowerOrDigit(key[i - 1]);
+        const bool prevUpper = i > 0 && isUpper(key[i - 1]);
+        const bool nextLower = i + 1 < n && std::islower(static_cast<unsigned char>(key[i + 1]));
+        // A word starts at a capital after a lower-case letter, or at the last capital of an
+        // acronym that a lower-case word follows ("SHOrder" -> "SH order").
+        if (upper && i > 0 && (prevLower || (prevUpper && nextLower))) out += ' ';
+        // The capital that starts a lower-case word is lowered; acronyms ("MB", "Y") stay.
+        out += upper && nextLower ? char(std::tolower(static_cast<unsigned char>(c))) : c;
+    }
+    return out;
+}
 
 const char* costName(Cost c) {
     switch (c) {

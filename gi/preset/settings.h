@@ -27,6 +27,9 @@ enum class Cost : uint8_t {
 inline Cost operator|(Cost a, Cost b) { return Cost(uint8_t(a) | uint8_t(b)); }
 inline bool any(Cost c, Cost bit) { return (uint8_t(c) & uint8_t(bit)) != 0; }
 const char* costName(Cost c);
+// A settings key as words for labels: "shadowMapSize" -> "shadow map size"; acronyms stay
+// ("memoryBudgetMB" -> "memory budget MB", "SHOrder" -> "SH order", "fovY" -> "fov Y").
+std::string readableKey(std::string_view key);
 
 inline constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
