@@ -260,7 +260,6 @@ void Editor::collectResult() {
     if (!mResult) return;
     GIResult r = std::move(*mResult);
     mResult.reset();
-    mSubmittedKey.clear();
     if (r.error.empty()) {
         mRenderMs = r.frame.ms;
         mRenderSize = {r.frame.width, r.frame.height};
@@ -301,7 +300,6 @@ void Editor::submitIfNeeded() {
         mGI.release();
         return;
     }
-    mSubmittedKey = mWantKey;
     mGI.submit([this, fs = std::move(fs), key = mWantKey, preset = mPreset, w, h, started = mFrames] {
         GIResult r{key, preset, {0.0f, w, h, started}, {}};
         auto start = std::chrono::steady_clock::now();

@@ -176,7 +176,6 @@ private:
         std::string error;  // non-empty: it threw, and the image is the previous one
     };
     std::optional<GIResult> mResult;
-    std::string mSubmittedKey;          // the frame in flight
     std::string mWantKey;               // liveKey() of what this frame asks the GI for (preview or full)
     std::string mFailedKey;             // the last frame that threw: not tried again as such
     gl::Texture mComposite;             // the window's background (composite())
