@@ -9,6 +9,7 @@
 #include "common/shared.h"
 #include "gi/gl/debug.h"
 #include "gi/metrics/metrics.h"
+#include "gi/reference/framing.h"
 #include "gi/reference/reference_cache.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
@@ -165,6 +166,8 @@ int run(int argc, char** argv) {
     if (spp > 0) preset.reference.spp = spp;
 
     gi::Scene scene = gi::loadScene(preset.header.scene, preset.folder, preset.render.memoryBudgetMB);
+    if (std::string how = gi::frameCameraless(scene); !how.empty())
+        std::fprintf(stderr, "gi-render: %s has no camera; viewed %s\n", scene.name.c_str(), how.c_str());
     for (const auto& w : scene.warnings) std::fprintf(stderr, "gi-render: warning: %s: %s\n", scene.name.c_str(), w.c_str());
     if (gi::usesDefaultSun(preset, scene))
         std::fprintf(stderr,

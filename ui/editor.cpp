@@ -1,5 +1,6 @@
 #include "ui/editor.h"
 
+#include "gi/reference/framing.h"
 #include "gi/render/image_io.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
@@ -504,6 +505,8 @@ void Editor::apply(uint8_t cost) {
 
 void Editor::installScene(Preset& p, bool resetView) {
     Scene scene = loadScene(p.header.scene, p.folder, p.render.memoryBudgetMB);
+    frameCameraless(scene);  // a file with no camera: a view from inside when it is a room
+    mFramedView.reset();
     if (resetView) {
         p.camera = scene.cameras.empty() ? frameBounds(scene.bounds) : scene.cameras.front();
         p.camera.sceneCamera = -1;

@@ -234,6 +234,7 @@ private:
     void jumpTo(const CameraBookmark& view);
     void takeFileCamera(size_t index);
     std::string mBookmarkName;
+    std::optional<CameraSettings> mFramedView;  // "Frame scene"'s view, traced at its first use
     std::optional<std::filesystem::path> mScreenshotRequest;  // the PNGs' path without "-window.png"
     bool mShowHelp = false;     // the help window: every shortcut and mouse action
     void helpWindow();

@@ -744,6 +744,15 @@ struct PathTracer::Impl {
 PathTracer::PathTracer(const Scene& scene) : mImpl(std::make_unique<Impl>(scene)) {}
 PathTracer::~PathTracer() = default;
 
+PathTracer::SurfaceHit PathTracer::nearestSurface(const glm::vec3& origin, const glm::vec3& dir, float tnear) const {
+    Impl::Hit h = mImpl->intersect(origin, glm::normalize(dir), tnear, std::numeric_limits<float>::infinity());
+    SurfaceHit s;
+    if (!h.valid) return s;
+    s.t = h.t;
+    s.normal = mImpl->shadingNormal(h.triangle, h.u, h.v);
+    return s;
+}
+
 bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int firstSample, int count,
                        std::vector<double>& sum, const std::atomic<bool>* cancel) const {
     const int w = fs.width, h = fs.height;

@@ -80,6 +80,15 @@ public:
 
     uint64_t raysTraced() const { return mRays.load(); }
 
+    // The nearest surface along a ray from `origin` (alpha masks honoured): its distance and the
+    // interpolated vertex normal as authored, not turned to face the ray (framing.h reads which
+    // side of a surface a point sees). t < 0 when the ray escapes.
+    struct SurfaceHit {
+        float t = -1.0f;
+        glm::vec3 normal{0.0f};
+    };
+    SurfaceHit nearestSurface(const glm::vec3& origin, const glm::vec3& dir, float tnear = 0.0f) const;
+
     // Tests only: off leaves the environment to BSDF sampling alone (unbiased, noisier), the
     // brute-force estimate that next-event estimation must agree with.
     void setEnvironmentSampling(bool on) { mEnvironmentSampling = on; }

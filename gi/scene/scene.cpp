@@ -188,6 +188,7 @@ Scene loadScene(const std::string& scene, const std::filesystem::path& presetFol
     if (s.cameras.empty()) {
         s.cameras.push_back(frameBounds(s.bounds));
         s.cameraNames = {"framing the scene (the file has no camera)"};
+        s.framedCamera = true;  // frameCameraless (gi/reference/framing.h) may look from inside
     }
     return s;
 }

@@ -123,6 +123,7 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<CameraSettings> cameras;  // the file's cameras (eye/target/fov), in file order
     std::vector<std::string> cameraNames; // their names (the camera's, else its node's); may be shorter
+    bool framedCamera = false;            // cameras[0] was made by loadScene: the file has none
     // The camera's name as the editor lists it: its own, else "camera N".
     std::string cameraName(size_t i) const {
         return i < cameraNames.size() && !cameraNames[i].empty() ? cameraNames[i] : "camera " + std::to_string(i);

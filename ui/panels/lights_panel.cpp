@@ -3,6 +3,7 @@
 #include "ui/editor.h"
 
 #include "gi/preset/history.h"
+#include "gi/reference/framing.h"
 #include "gi/scene/camera.h"
 #include "gi/scene/emitters.h"
 
@@ -20,7 +21,10 @@ namespace gi::ui {
 uint8_t Editor::cameraTools() {
     uint8_t cost = 0;
     if (ImGui::Button("Frame scene") && mScene.bounds.valid()) {
-        CameraSettings framed = frameBounds(mScene.bounds);
+        // The view a file without a camera starts from (from inside when the scene is a room);
+        // traced once per scene.
+        if (!mFramedView) mFramedView = mScene.framedCamera ? mScene.cameras[0] : frameScene(mScene, PathTracer(mScene)).camera;
+        const CameraSettings& framed = *mFramedView;
         mPreset.camera.eye = framed.eye;
         mPreset.camera.target = framed.target;
         mPreset.camera.near = framed.near;
