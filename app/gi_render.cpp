@@ -45,9 +45,9 @@ void printSettings(bool asJson) {
         } else if (std::isfinite(s.min) || std::isfinite(s.max)) {
             range = "[" + gi::detail::formatNumber(s.min) + ", " + gi::detail::formatNumber(s.max) + "]";
         }
-        std::printf("%-26s %-6s %-22s default %-18s %s%s%s (change: %s)\n", s.key.c_str(), s.type.c_str(), range.c_str(),
+        std::printf("%-26s %-6s %-22s default %-18s %s%s%s (change: %s%s)\n", s.key.c_str(), s.type.c_str(), range.c_str(),
                     s.defaultValue.dump().c_str(), s.description.c_str(), s.unit.empty() ? "" : ", ", s.unit.c_str(),
-                    s.cost.c_str());
+                    s.cost.c_str(), s.developer ? "; developer" : "");
     }
 }
 

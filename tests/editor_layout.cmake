@@ -7,8 +7,8 @@
 include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 file(WRITE ${WORK}/layout.json
   "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2, "
-  "\"sections\": {\"presets\": false, \"lpv\": true}}\n")
-file(WRITE ${WORK}/script.txt "wait\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
+  "\"sections\": {\"presets\": false, \"lpv\": true, \"lpv/developer\": true}}\n")
+file(WRITE ${WORK}/script.txt "wait\nsection render/developer open\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
 run_under_xvfb(1400x900x24 ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
                --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json --screenshot ${WORK}/resized.png)
 file(READ ${WORK}/stats.json stats)
@@ -55,3 +55,19 @@ endif()
 string(JSON savedPresets GET "${saved}" sections presets)
 string(JSON savedLpv GET "${saved}" sections lpv)
 expect("saved sections (presets, lpv)" "${savedPresets} ${savedLpv}" "OFF ON")
+# Each section shows what an artist tunes; the developer settings sit in a node, closed unless
+# the layout (lpv/developer) or the script's `section` (render/developer) opens it.
+string(JSON shown GET "${stats}" editor fieldsShown)
+foreach(key vct.intensity vct.gridResolution lpv.intensity lpv.nudge render.shadowMapSize render.shadowBias)
+  if(NOT shown MATCHES "\"${key}\"")
+    message(FATAL_ERROR "${key} is not drawn: ${shown}")
+  endif()
+endforeach()
+foreach(key vct.nudge vct.stepMultiplier quality.minSSIM)
+  if(shown MATCHES "\"${key}\"")
+    message(FATAL_ERROR "${key} (a developer setting, its node closed) is drawn: ${shown}")
+  endif()
+endforeach()
+string(JSON savedDev GET "${saved}" sections lpv/developer)
+string(JSON savedRenderDev GET "${saved}" sections render/developer)
+expect("saved developer nodes (lpv, render)" "${savedDev} ${savedRenderDev}" "ON ON")

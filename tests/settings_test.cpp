@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <algorithm>
 #include <cmath>
 
@@ -195,6 +197,33 @@ TEST(Settings, ReadableKeys) {
             EXPECT_EQ(label.size(), std::string(m.key).size() + size_t(std::count(label.begin(), label.end(), ' '))) << m.key;
         });
     });
+}
+
+// forDevelopers marks the settings one debugs; --list-settings (and its JSON) says which. Every
+// section an artist opens keeps something to tune; quality (test thresholds) is all developer.
+TEST(Settings, DeveloperSettingsAreMarkedAndEverySectionKeepsSomethingToTune) {
+    std::map<std::string, std::pair<int, int>> perSection;  // section -> (artist, developer)
+    std::map<std::string, bool> developer;
+    for (const SettingInfo& s : listSettings()) {
+        developer[s.key] = s.developer;
+        size_t dot = s.key.find('.');
+        std::string section = dot == std::string::npos ? "" : s.key.substr(0, dot);
+        (s.developer ? perSection[section].second : perSection[section].first)++;
+        EXPECT_EQ(settingInfoToJson(s).contains("developer"), s.developer) << s.key;
+    }
+    for (const char* key : {"vct.nudge", "vct.stepMultiplier", "lpv.rsmResolution", "render.shadowBias", "ssao.sampleCount",
+                            "volumetric.samples", "environment.cubeSize", "reference.seed", "quality.minSSIM", "camera.near"})
+        EXPECT_TRUE(developer.at(key)) << key;
+    for (const char* key : {"technique", "vct.intensity", "vct.gridResolution", "lpv.propagationSteps", "toneMap.exposure",
+                            "volumetric.density", "volumetric.phase", "environment.intensity", "camera.fovY"})
+        EXPECT_FALSE(developer.at(key)) << key;
+    for (const auto& [section, counts] : perSection) {
+        if (section == "quality") {
+            EXPECT_EQ(counts.first, 0);
+            continue;
+        }
+        EXPECT_GT(counts.first, 0) << "section '" << section << "' has nothing an artist tunes";
+    }
 }
 
 }  // namespace

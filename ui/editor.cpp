@@ -453,6 +453,16 @@ void Editor::runAction(const std::string& action) {
         savePresetAs(arg);
     } else if (verb == "open") {
         openPreset(arg);
+    } else if (verb == "section") {
+        // section NAME open|closed; NAME/developer is a section's developer node.
+        size_t space = arg.rfind(' ');
+        std::string name = arg.substr(0, space), how = space == std::string::npos ? "" : arg.substr(space + 1);
+        if (space == std::string::npos || (how != "open" && how != "closed"))
+            throw Error("script: section takes a name and open or closed (e.g. 'section vct/developer open')");
+        if (name.find('/') != std::string::npos)
+            mSectionOpen[name] = how == "open";
+        else
+            mSectionForce[name] = how == "open";
     } else {
         throw Error("script: unknown action '" + action + "'");
     }
@@ -480,6 +490,7 @@ json Editor::state() const {
             {"giSettled", giSettled()},
             {"compare", compareState()},
             {"openSections", openSections()},
+            {"fieldsShown", mFieldsShown},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
 }
 
@@ -697,6 +708,7 @@ void Editor::drawPanels() {
     const ImGuiWindowFlags docked = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse;
     bool leftOpen = ImGui::Begin("GI Workbench", nullptr, docked);
     mLeftWidth = ImGui::GetWindowWidth();
+    mFieldsShown.clear();
     if (leftOpen) {
         ImGui::PushItemWidth(-kLabelWidth);
         if (!mFrameError.empty()) {
@@ -735,7 +747,10 @@ void Editor::drawPanels() {
                 ImGui::PopID();
                 if (ImGui::IsItemHovered()) ImGui::SetTooltip("every %s setting to its default (undo brings them back)", S::kSection.data());
             }
-            cost |= drawSettings(section, FieldBaselines{prefix, &defaults, mPresetPath.empty() ? nullptr : &disk});
+            // The developer settings sit in a node of their own, closed unless the layout says.
+            bool& developerOpen = mSectionOpen[std::string(S::kSection) + "/developer"];
+            cost |= drawSettings(section, FieldBaselines{prefix, &defaults, mPresetPath.empty() ? nullptr : &disk,
+                                                         &developerOpen, &mFieldsShown});
             if constexpr (std::is_same_v<S, CameraSettings>) cost |= cameraTools();
             passExtras(S::kSection, frame, previewers);
             if (own) cost |= own->drawSection(ctx);
@@ -786,6 +801,10 @@ bool Editor::section(const char* name, bool defaultOpen, bool forceOpen) {
     // The user's layout decides at the first appearance; --lights-panel and the like open theirs.
     if (auto it = mSectionOpen.find(name); it != mSectionOpen.end()) ImGui::SetNextItemOpen(it->second, ImGuiCond_Once);
     if (forceOpen) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    if (auto it = mSectionForce.find(name); it != mSectionForce.end()) {  // the script's `section`
+        ImGui::SetNextItemOpen(it->second, ImGuiCond_Always);
+        mSectionForce.erase(it);
+    }
     const bool open = ImGui::CollapsingHeader(name, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
     mSectionOpen[name] = open;
     return open;

@@ -85,7 +85,8 @@ public:
     //   set KEY=VALUE | drag KEY=VALUE | undo | redo | reset KEY | reset-section NAME | reset-all | save | save-as PATH |
     //   open PATH | pause | resume | wait | resize WIDTHxHEIGHT | bookmark NAME | goto NAME | camera N |
     //   screenshot PATH (PATH-window.png and PATH-viewport.png) | help | hold (A, once the GI is up to date) |
-    //   compare live|a|split | diff-file PATH | wait-reference (until the Reference panel's job is done)
+    //   compare live|a|split | diff-file PATH | wait-reference (until the Reference panel's job is done) |
+    //   section NAME open|closed (NAME/developer: a section's developer node)
     // (drag: the value set mid-drag; the drag lasts until the next other action, so the GI previews until then)
     // The editor runs the script one action per frame, each once the GI has caught up (giCaughtUp).
     // Throws gi::Error for an unknown action.
@@ -257,6 +258,8 @@ private:
     // else as `defaultOpen` says; `forceOpen` opens it at the start whatever the layout says.
     bool section(const char* name, bool defaultOpen, bool forceOpen = false);
     std::map<std::string, bool> mSectionOpen;  // the left column's sections, open or closed (saved in the layout)
+    std::map<std::string, bool> mSectionForce;  // the script's `section` verb, applied at the next draw
+    std::vector<std::string> mFieldsShown;      // full keys of the settings the last frame drew
     json openSections() const {
         json open = json::array();
         for (const auto& [name, isOpen] : mSectionOpen)

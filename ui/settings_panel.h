@@ -77,6 +77,8 @@ struct FieldBaselines {
     std::string prefix;  // "vct.", "" for the header, "lights.0."
     const std::map<std::string, std::string>* defaults = nullptr;
     const std::map<std::string, std::string>* disk = nullptr;
+    bool* developerOpen = nullptr;               // the developer node's state (drawSettings)
+    std::vector<std::string>* shown = nullptr;   // receives the full key of each field drawn
 };
 
 // Markers left of the last item: a blue dot where the value differs from the default, an
@@ -86,7 +88,10 @@ void fieldMarkers(bool differsFromDefault, bool differsFromDisk);
 std::string resetMenu(const char* id, const std::string* defaultValue, const std::string* diskValue, bool differsFromDefault,
                       bool differsFromDisk);
 
-// Draws every field of `s` and returns the OR of the Cost bits of the fields that changed.
+// Draws every field of `s` and returns the OR of the Cost bits of the fields that changed. The
+// fields an artist tunes come first; those marked forDevelopers follow under a "developer" tree
+// node, closed unless *developerOpen (kept by the caller; ImGui's own state when null) says
+// otherwise. Its label counts them and those off their default.
 template <Settings S>
 uint8_t drawSettings(S& s, const FieldBaselines& baselines = {}) {
     uint8_t cost = 0;
@@ -95,9 +100,8 @@ uint8_t drawSettings(S& s, const FieldBaselines& baselines = {}) {
         auto it = m->find(key);
         return it == m->end() ? nullptr : &it->second;
     };
-    // Sections share key names (a light's and the camera's "color", "near"...): scope the IDs.
-    ImGui::PushID(S::kSection.data(), S::kSection.data() + S::kSection.size());
-    s.visit([&](auto& field, const FieldMeta& m) {
+    auto drawOne = [&](auto& field, const FieldMeta& m) {
+        if (baselines.shown) baselines.shown->push_back(baselines.prefix + m.key);
         const char* readOnly = nullptr;
         if constexpr (HasReadOnlyFields<S>) readOnly = s.readOnly(m.key);
         if (!readOnly) {
@@ -119,7 +123,32 @@ uint8_t drawSettings(S& s, const FieldBaselines& baselines = {}) {
         drawField(shown, m);
         ImGui::EndDisabled();
         readOnlyTooltip(m, readOnly);
+    };
+    // Sections share key names (a light's and the camera's "color", "near"...): scope the IDs.
+    ImGui::PushID(S::kSection.data(), S::kSection.data() + S::kSection.size());
+    int developer = 0, developerOffDefault = 0;
+    s.visit([&](auto& field, const FieldMeta& m) {
+        if (!m.developer) return drawOne(field, m);
+        ++developer;
+        const std::string* def = lookup(baselines.defaults, baselines.prefix + m.key);
+        if (def && *def != gi::detail::write(field).dump()) ++developerOffDefault;
     });
+    if (developer > 0) {
+        std::string label = "developer (" + std::to_string(developer) + " settings";
+        if (developerOffDefault) label += ", " + std::to_string(developerOffDefault) + " not default";
+        label += ")";
+        if (baselines.developerOpen) ImGui::SetNextItemOpen(*baselines.developerOpen, ImGuiCond_Always);
+        const bool open = ImGui::TreeNode("developer", "%s", label.c_str());
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("settings one debugs rather than tunes: biases, sample counts, budgets, test thresholds");
+        if (baselines.developerOpen) *baselines.developerOpen = open;
+        if (open) {
+            s.visit([&](auto& field, const FieldMeta& m) {
+                if (m.developer) drawOne(field, m);
+            });
+            ImGui::TreePop();
+        }
+    }
     ImGui::PopID();
     return cost;
 }

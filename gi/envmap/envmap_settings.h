@@ -48,12 +48,12 @@ struct EnvironmentSettings {
                  Cost::Reallocate});
         v(intensity, {"intensity", "Scale of the environment's radiance", "", 0, 1e4, Cost::Uniform, 0.01});
         v(rotation, {"rotation", "Rotation of the map about +y", "deg", -360, 360, Cost::Uniform, 1});
-        v(cubeSize, {"cubeSize", "Texels per cube face at mip 0", "px", 16, 2048, Cost::Reallocate});
-        v(samples, {"samples", "Prefilter samples per texel", "", 1, 4096, Cost::Reallocate});
-        v(distribution, {"distribution", "Prefilter lobe: ggx (importance sampled) or beckmannCone (the seed's cone sampling)", "", 0,
-                         0, Cost::Reallocate});
-        v(mipRoughness, {"mipRoughness", "Perceptual roughness of each mip, mip 0 first (one mip per entry)", "", 0, 1,
-                         Cost::Reallocate, 0.005});
+        v(cubeSize, forDevelopers({"cubeSize", "Texels per cube face at mip 0", "px", 16, 2048, Cost::Reallocate}));
+        v(samples, forDevelopers({"samples", "Prefilter samples per texel", "", 1, 4096, Cost::Reallocate}));
+        v(distribution, forDevelopers({"distribution", "Prefilter lobe: ggx (importance sampled) or beckmannCone (the seed's cone sampling)", "", 0,
+                         0, Cost::Reallocate}));
+        v(mipRoughness, forDevelopers({"mipRoughness", "Perceptual roughness of each mip, mip 0 first (one mip per entry)", "", 0, 1,
+                         Cost::Reallocate, 0.005}));
         v(skybox, {"skybox", "Draw the environment where no surface is", ""});
     }
 };

@@ -30,15 +30,15 @@ struct LPVSettings {
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Cells per side of each cascade", "cells", 4, 256, Cost::Reallocate, 1});
         v(cascadeCount, {"cascadeCount", "Number of nested cascades, each doubling the extent", "", 1, 4, Cost::Reallocate});
-        v(cascadeExtent, {"cascadeExtent", "World size of the finest cascade (0: fit the scene)", "m", 0, 1e5});
+        v(cascadeExtent, forDevelopers({"cascadeExtent", "World size of the finest cascade (0: fit the scene)", "m", 0, 1e5}));
         v(propagationSteps, {"propagationSteps", "Propagation iterations (light moves one cell per step)", "", 0, 512});
-        v(rsmResolution, {"rsmResolution", "Reflective shadow map resolution per light and cascade", "px", 16, 4096,
-                          Cost::Reallocate, 16});
-        v(nudge, {"nudge", "Move VPLs along their normal before injection", "cells", 0, 4});
+        v(rsmResolution, forDevelopers({"rsmResolution", "Reflective shadow map resolution per light and cascade", "px", 16, 4096,
+                          Cost::Reallocate, 16}));
+        v(nudge, forDevelopers({"nudge", "Move VPLs along their normal before injection", "cells", 0, 4}));
         v(occlusion, {"occlusion", "Block propagation with the geometry volume", ""});
         v(occlusionStrength, {"occlusionStrength", "Scale of the geometry volume's blocking", "", 0, 8});
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
-        v(damping, {"damping", "Self-illumination damping (0 off, 1 full)", "", 0, 1});
+        v(damping, forDevelopers({"damping", "Self-illumination damping (0 off, 1 full)", "", 0, 1}));
         v(bounces, {"bounces", "Diffuse bounces (1: KD09; more re-inject the propagated light at the geometry volume)", "", 1, 4});
     }
 };

@@ -245,6 +245,7 @@ json settingInfoToJson(const SettingInfo& s) {
     if (std::isfinite(s.min)) j["min"] = s.min;
     if (std::isfinite(s.max)) j["max"] = s.max;
     if (!s.choices.empty()) j["choices"] = s.choices;
+    if (s.developer) j["developer"] = true;
     return j;
 }
 

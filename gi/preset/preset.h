@@ -36,10 +36,10 @@ struct QualitySettings {
 
     template <class V>
     void visit(V&& v) {
-        v(minSSIM, {"minSSIM", "SSIM the preset must reach against the path-traced reference (tests check it)", "", -1, 1});
-        v(maxLeakFraction, {"maxLeakFraction", "Largest fraction of pixels allowed to leak light", "", 0, 1});
-        v(maxBrightnessError, {"maxBrightnessError", "Largest relative error of the mean brightness against the reference", "", 0, 100});
-        v(minSSIMLinear, {"minSSIMLinear", "SSIM the preset must reach on 8-bit sRGB without tone mapping (as gi-compare scores; 0: unchecked)", "", 0, 1});
+        v(minSSIM, forDevelopers({"minSSIM", "SSIM the preset must reach against the path-traced reference (tests check it)", "", -1, 1}));
+        v(maxLeakFraction, forDevelopers({"maxLeakFraction", "Largest fraction of pixels allowed to leak light", "", 0, 1}));
+        v(maxBrightnessError, forDevelopers({"maxBrightnessError", "Largest relative error of the mean brightness against the reference", "", 0, 100}));
+        v(minSSIMLinear, forDevelopers({"minSSIMLinear", "SSIM the preset must reach on 8-bit sRGB without tone mapping (as gi-compare scores; 0: unchecked)", "", 0, 1}));
     }
 };
 

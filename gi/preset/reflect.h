@@ -27,6 +27,7 @@ struct SettingInfo {
     double min = -kNoLimit;
     double max = kNoLimit;
     std::vector<std::string> choices;  // enum names
+    bool developer = false;            // forDevelopers: debugged rather than tuned
 };
 
 namespace detail {
@@ -260,6 +261,7 @@ void describe(std::vector<SettingInfo>& out, const std::string& prefix) {
         info.unit = m.unit;
         info.cost = costName(m.cost);
         info.defaultValue = detail::write(field);
+        info.developer = m.developer;
         if constexpr (std::is_same_v<T, float> || std::is_same_v<T, int> || std::is_same_v<T, glm::vec3>) {
             info.min = m.min;
             info.max = m.max;

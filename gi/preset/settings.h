@@ -42,7 +42,16 @@ struct FieldMeta {
     double max = kNoLimit;
     Cost cost = Cost::Uniform;
     double step = 0.0;        // UI drag speed; 0 picks one from the range
+    bool developer = false;   // a setting one debugs rather than tunes (forDevelopers)
 };
+
+// Marks a field as one a developer debugs (biases, sample counts, budgets, test thresholds)
+// rather than one an artist tunes: the editor shows it under its section's "developer" node,
+// --list-settings and settingInfo() say so. JSON, --set and validation treat both alike.
+constexpr FieldMeta forDevelopers(FieldMeta m) {
+    m.developer = true;
+    return m;
+}
 
 // Enums reflect through a name table: specialise EnumNames<E> with a `values` array of
 // {value, "name"} pairs. JSON and --set use the names.

@@ -23,11 +23,11 @@ struct ReferenceSettings {
     template <class V>
     void visit(V&& v) {
         v(spp, {"spp", "Samples per pixel of the path-traced reference", "", 1, 1 << 16, Cost::Reallocate});
-        v(maxBounces, {"maxBounces", "Maximum surface bounces per path", "", 1, 64, Cost::Reallocate});
-        v(mode, {"mode", "Light paths kept: full, direct (one bounce) or indirect (two or more bounces)", "", 0, 0,
-                 Cost::Reallocate});
-        v(seed, {"seed", "Random seed of the reference", "", 0, 1 << 30, Cost::Reallocate});
-        v(rouletteDepth, {"rouletteDepth", "Bounces before Russian roulette starts", "", 1, 64, Cost::Reallocate});
+        v(maxBounces, forDevelopers({"maxBounces", "Maximum surface bounces per path", "", 1, 64, Cost::Reallocate}));
+        v(mode, forDevelopers({"mode", "Light paths kept: full, direct (one bounce) or indirect (two or more bounces)", "", 0, 0,
+                 Cost::Reallocate}));
+        v(seed, forDevelopers({"seed", "Random seed of the reference", "", 0, 1 << 30, Cost::Reallocate}));
+        v(rouletteDepth, forDevelopers({"rouletteDepth", "Bounces before Russian roulette starts", "", 1, 64, Cost::Reallocate}));
     }
 };
 

@@ -31,11 +31,11 @@ struct RenderSettings {
     void visit(V&& v) {
         v(shadowMapSize, {"shadowMapSize", "Shadow map resolution per side", "px", 64, 8192, Cost::Reallocate, 64});
         v(pcfRadius, {"pcfRadius", "Percentage-closer filter radius", "texels", 0, 8});
-        v(shadowBias, {"shadowBias", "Slope-scaled depth bias", "texels", 0, 16});
-        v(specular, {"specular", "Add GGX specular to direct light", ""});
+        v(shadowBias, forDevelopers({"shadowBias", "Slope-scaled depth bias", "texels", 0, 16}));
+        v(specular, forDevelopers({"specular", "Add GGX specular to direct light", ""}));
         v(ambient, {"ambient", "Uniform incident radiance standing in for indirect light when technique is none", "", 0, 100});
-        v(memoryBudgetMB, {"memoryBudgetMB", "GPU memory budget; larger settings are refused", "MiB", 16, 1 << 20});
-        v(timeBudgetSeconds, {"timeBudgetSeconds", "Refuse work estimated to take longer than this", "s", 1, 1e6});
+        v(memoryBudgetMB, forDevelopers({"memoryBudgetMB", "GPU memory budget; larger settings are refused", "MiB", 16, 1 << 20}));
+        v(timeBudgetSeconds, forDevelopers({"timeBudgetSeconds", "Refuse work estimated to take longer than this", "s", 1, 1e6}));
     }
 
     size_t memoryBudgetBytes() const { return size_t(double(memoryBudgetMB) * 1024.0 * 1024.0); }

@@ -21,11 +21,11 @@ struct CameraSettings {
     void visit(V&& v) {
         v(eye, {"eye", "Eye position in world space", "m", -1e6, 1e6});
         v(target, {"target", "Point the camera looks at", "m", -1e6, 1e6});
-        v(up, {"up", "World up direction", "", -1, 1});
+        v(up, forDevelopers({"up", "World up direction", "", -1, 1}));
         v(fovY, {"fovY", "Vertical field of view", "deg", 1, 170});
-        v(near, {"near", "Near clip plane distance", "m", 1e-4, 1e4});
-        v(far, {"far", "Far clip plane distance", "m", 1e-3, 1e7});
-        v(sceneCamera, {"sceneCamera", "Use the glTF file's camera with this index (-1: eye/target)", "", -1, 1023});
+        v(near, forDevelopers({"near", "Near clip plane distance", "m", 1e-4, 1e4}));
+        v(far, forDevelopers({"far", "Far clip plane distance", "m", 1e-3, 1e7}));
+        v(sceneCamera, forDevelopers({"sceneCamera", "Use the glTF file's camera with this index (-1: eye/target)", "", -1, 1023}));
     }
 };
 
@@ -84,7 +84,7 @@ struct LightSettings {
         v(innerConeDeg, {"innerConeDeg", "Spot half-angle of full intensity", "deg", 0, 89.9});
         v(outerConeDeg, {"outerConeDeg", "Spot half-angle where intensity reaches zero", "deg", 0.1, 90});
         v(castShadows, {"castShadows", "Render a shadow map for this light", "", 0, 0, Cost::Reallocate});
-        v(emitter, {"emitter", "Area: the scene's emissive surface (its index in the Lights panel)", "", -1, 1023, Cost::Reallocate});
+        v(emitter, forDevelopers({"emitter", "Area: the scene's emissive surface (its index in the Lights panel)", "", -1, 1023, Cost::Reallocate}));
     }
 
     // An area light's position and direction are its emitter's centroid and normal, placed

@@ -31,11 +31,11 @@ struct SSAOSettings {
         v(enabled, {"enabled", "Multiply the indirect term by screen-space ambient occlusion", ""});
         v(radius, {"radius", "Radius of the sampling hemisphere (0.144 is 0.5 m in the built-in Cornell box)",
                    "fraction of the scene bounds' diagonal", 0.001, 1, Cost::Uniform, 0.001});
-        v(sampleCount, {"sampleCount", "Kernel samples per pixel", "", 4, 64});
-        v(bias, {"bias", "Depth a sample must lie behind the stored surface to count as occluded",
-                 "fraction of the scene bounds' diagonal", 0, 0.1, Cost::Uniform, 0.0001});
+        v(sampleCount, forDevelopers({"sampleCount", "Kernel samples per pixel", "", 4, 64}));
+        v(bias, forDevelopers({"bias", "Depth a sample must lie behind the stored surface to count as occluded",
+                 "fraction of the scene bounds' diagonal", 0, 0.1, Cost::Uniform, 0.0001}));
         v(strength, {"strength", "Exponent applied to the visibility (0 turns AO off)", "", 0, 4, Cost::Uniform, 0.01});
-        v(blurRadius, {"blurRadius", "Box blur half-width; the window is 2*blurRadius pixels wide (0 = no blur)", "px", 0, 4});
+        v(blurRadius, forDevelopers({"blurRadius", "Box blur half-width; the window is 2*blurRadius pixels wide (0 = no blur)", "px", 0, 4}));
     }
 };
 

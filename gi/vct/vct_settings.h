@@ -65,29 +65,29 @@ struct VCTSettings {
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Voxels per side of the grid (of each level)", "voxels", 32, 256, Cost::Reallocate, 1});
         v(mode, {"mode", "dense: one grid over the scene; cascaded: nested grids snapped to res/8 cells; clipmap: nested grids with toroidal updates", "", 0, 0, Cost::Reallocate | Cost::Recompile});
-        v(levelCount, {"levelCount", "Nested levels in cascaded and clipmap modes", "", 1, 6, Cost::Reallocate | Cost::Recompile});
-        v(levelExtent, {"levelExtent", "World size of the finest level (0: fit the scene)", "m", 0, 1e5});
+        v(levelCount, forDevelopers({"levelCount", "Nested levels in cascaded and clipmap modes", "", 1, 6, Cost::Reallocate | Cost::Recompile}));
+        v(levelExtent, forDevelopers({"levelExtent", "World size of the finest level (0: fit the scene)", "m", 0, 1e5}));
         v(coneSet, {"coneSet", "Diffuse cones: six (seed 003), nine (seed 000) or custom (coneCount on the hemisphere)"});
-        v(coneCount, {"coneCount", "Diffuse cones of the custom set", "", 1, 32});
-        v(coneAperture, {"coneAperture", "Full aperture of each diffuse cone", "deg", 5, 120});
-        v(coneWeighting, {"coneWeighting", "Diffuse cone weights: cosine of the angle to the normal, or equal"});
-        v(nudge, {"nudge", "Cone start offset in voxel diagonals, divided by n.w (seed 000 eq. 3.4)", "voxels", 0, 8});
-        v(stepMultiplier, {"stepMultiplier", "Step length in cone diameters", "", 0.1, 4});
+        v(coneCount, forDevelopers({"coneCount", "Diffuse cones of the custom set", "", 1, 32}));
+        v(coneAperture, forDevelopers({"coneAperture", "Full aperture of each diffuse cone", "deg", 5, 120}));
+        v(coneWeighting, forDevelopers({"coneWeighting", "Diffuse cone weights: cosine of the angle to the normal, or equal"}));
+        v(nudge, forDevelopers({"nudge", "Cone start offset in voxel diagonals, divided by n.w (seed 000 eq. 3.4)", "voxels", 0, 8}));
+        v(stepMultiplier, forDevelopers({"stepMultiplier", "Step length in cone diameters", "", 0.1, 4}));
         v(maxDistance, {"maxDistance", "Cone length (0: the grid's diagonal)", "m", 0, 1e5});
         v(bounceCount, {"bounceCount", "Light bounces stored in the voxels (2 or 3 re-inject traced light)", "", 1, 3});
-        v(anisotropic, {"anisotropic", "Six directional mip volumes (seed 003); isotropic voxels only", "", 0, 0, Cost::Reallocate | Cost::Recompile});
-        v(sh, {"sh", "Voxel radiance as 2-band SH per colour (seed 000's VCT SH)", "", 0, 0, Cost::Reallocate | Cost::Recompile});
+        v(anisotropic, forDevelopers({"anisotropic", "Six directional mip volumes (seed 003); isotropic voxels only", "", 0, 0, Cost::Reallocate | Cost::Recompile}));
+        v(sh, forDevelopers({"sh", "Voxel radiance as 2-band SH per colour (seed 000's VCT SH)", "", 0, 0, Cost::Reallocate | Cost::Recompile}));
         v(specularCone, {"specularCone", "Trace a specular cone along the reflection", ""});
-        v(specularApertureMin, {"specularApertureMin", "Specular cone aperture at roughness 0", "deg", 0.5, 120});
-        v(specularApertureMax, {"specularApertureMax", "Specular cone aperture at roughness 1", "deg", 0.5, 120});
+        v(specularApertureMin, forDevelopers({"specularApertureMin", "Specular cone aperture at roughness 0", "deg", 0.5, 120}));
+        v(specularApertureMax, forDevelopers({"specularApertureMax", "Specular cone aperture at roughness 1", "deg", 0.5, 120}));
         v(vao, {"vao", "Voxel ambient occlusion from the diffuse cones", ""});
         v(vaoStrength, {"vaoStrength", "Strength of the voxel ambient occlusion", "", 0, 1});
-        v(vaoDistance, {"vaoDistance", "Occlusion range of the VAO (0: maxDistance)", "m", 0, 1e5});
+        v(vaoDistance, forDevelopers({"vaoDistance", "Occlusion range of the VAO (0: maxDistance)", "m", 0, 1e5}));
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
-        v(revoxelizeEveryFrame, {"revoxelizeEveryFrame", "Voxelize every frame (dynamic geometry, benchmarks) instead of only when the grid moves", ""});
+        v(revoxelizeEveryFrame, forDevelopers({"revoxelizeEveryFrame", "Voxelize every frame (dynamic geometry, benchmarks) instead of only when the grid moves", ""}));
         // Uniform: the trace targets follow the image size, which the pass checks every frame.
-        v(traceScale, {"traceScale", "Resolution scale of the cone trace (depth- and normal-aware upsampling below 1)", "", 0.125, 1,
-                       Cost::Uniform, 0.125});
+        v(traceScale, forDevelopers({"traceScale", "Resolution scale of the cone trace (depth- and normal-aware upsampling below 1)", "", 0.125, 1,
+                       Cost::Uniform, 0.125}));
     }
 };
 

@@ -66,22 +66,22 @@ struct VolumetricSettings {
     void visit(V&& v) {
         v(enabled, {"enabled", "Add volumetric lighting: single scattering of the lights in a medium filling the scene's bounds", ""});
         v(density, {"density", "Scattering coefficient sigma_s of the medium (0 adds nothing)", "1/m", 0, 100, Cost::Uniform, 0.005});
-        v(attenuation, {"attenuation", "Transmittance from the seed's optical thickness (e^-x/l) or from the extinction coefficient"});
+        v(attenuation, forDevelopers({"attenuation", "Transmittance from the seed's optical thickness (e^-x/l) or from the extinction coefficient"}));
         v(absorption, {"absorption", "Absorption coefficient sigma_a; extinction = density + absorption (coefficients)", "1/m", 0, 100,
                        Cost::Uniform, 0.005});
-        v(opticalThickness, {"opticalThickness", "Mean free path l of the seed's attenuation e^-x/l (opticalThickness)", "m", 0.01,
-                             1e5, Cost::Uniform, 0.1});
+        v(opticalThickness, forDevelopers({"opticalThickness", "Mean free path l of the seed's attenuation e^-x/l (opticalThickness)", "m", 0.01,
+                             1e5, Cost::Uniform, 0.1}));
         v(phase, {"phase", "Phase function: isotropic, henyeyGreenstein, schlick, rayleigh, mieHazy or mieMurky"});
         v(g, {"g", "Henyey-Greenstein asymmetry (and Schlick's through k = 1.55g - 0.55g^3); > 0 forward", "", -0.99, 0.99,
               Cost::Uniform, 0.01});
-        v(schlickFromG, {"schlickFromG", "Derive Schlick's k from g", ""});
-        v(schlickK, {"schlickK", "Schlick's k when not derived from g; > 0 forward", "", -0.99, 0.99, Cost::Uniform, 0.01});
-        v(samples, {"samples", "March samples per pixel along the lit part of the view ray", "", 1, 1000, Cost::Uniform});
-        v(resolutionScale, {"resolutionScale", "Size of the march buffer relative to the image", "", 0.125, 1, Cost::Reallocate, 0.005});
-        v(jitter, {"jitter", "Offset each pixel's samples by a fixed per-pixel hash (trades banding for noise)", ""});
-        v(pcf, {"pcf", "Filter the shadow test over 3x3 compared taps", ""});
-        v(blur, {"blur", "Blur of the march buffer: none, gaussian (5x5) or depthAware"});
-        v(attenuateScene, {"attenuateScene", "Fade the lit scene by the transmittance to the viewer", ""});
+        v(schlickFromG, forDevelopers({"schlickFromG", "Derive Schlick's k from g", ""}));
+        v(schlickK, forDevelopers({"schlickK", "Schlick's k when not derived from g; > 0 forward", "", -0.99, 0.99, Cost::Uniform, 0.01}));
+        v(samples, forDevelopers({"samples", "March samples per pixel along the lit part of the view ray", "", 1, 1000, Cost::Uniform}));
+        v(resolutionScale, forDevelopers({"resolutionScale", "Size of the march buffer relative to the image", "", 0.125, 1, Cost::Reallocate, 0.005}));
+        v(jitter, forDevelopers({"jitter", "Offset each pixel's samples by a fixed per-pixel hash (trades banding for noise)", ""}));
+        v(pcf, forDevelopers({"pcf", "Filter the shadow test over 3x3 compared taps", ""}));
+        v(blur, forDevelopers({"blur", "Blur of the march buffer: none, gaussian (5x5) or depthAware"}));
+        v(attenuateScene, forDevelopers({"attenuateScene", "Fade the lit scene by the transmittance to the viewer", ""}));
         v(intensity, {"intensity", "Scale of the in-scattered light (1 = physically based)", "", 0, 100, Cost::Uniform, 0.01});
     }
 };
