@@ -113,6 +113,8 @@ int run(int argc, char** argv) {
     auto last = std::chrono::steady_clock::now();
     double waited = 0.0;  // seconds the last frame waited for input (beginFrame)
     std::vector<float> uiFrameMs, giFrameMs;
+    std::vector<bool> uiFrameDrawn;  // whether each UI frame was drawn and presented
+    bool drawn = true;
     gi::json giFrames = gi::json::array();
     const auto start = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point settleStart;  // when the end began to wait for the GI to catch up
@@ -124,12 +126,16 @@ int run(int argc, char** argv) {
         last = now;
         // A UI frame's time is its work: not the time it waited for input while the GI rendered.
         const float workMs = std::max(dt - float(waited), 0.0f) * 1000.0f;
-        if (frame > 1) uiFrameMs.push_back(workMs);
+        if (frame > 1) {
+            uiFrameMs.push_back(workMs);
+            uiFrameDrawn.push_back(drawn);
+        }
         if (!scriptFile.empty() && frames == 0 && scriptEnd == 0 && editor.scriptDone()) scriptEnd = frame + 1;
 
-        // While the GI thread renders and nothing happens, the UI waits for input (at most 0.1 s,
-        // or until the GI frame is done), so the GI gets the cores.
-        waited = window.beginFrame(gi.busy() ? 0.1 : 0.0);
+        // While the GI thread renders, or the last frame showed nothing new, and nothing happens,
+        // the UI waits for input (at most 0.1 s, or until the GI frame is done), so the GI gets
+        // the cores and an idle editor does not spin.
+        waited = window.beginFrame(gi.busy() || !drawn ? 0.1 : 0.0);
         int width, height;
         window.framebufferSize(width, height);
         editor.frame(width, height, dt, workMs);
@@ -138,18 +144,24 @@ int run(int argc, char** argv) {
             giFrames.push_back({{"ms", gi->ms}, {"width", gi->width}, {"height", gi->height}, {"uiFrame", frame}, {"startUIFrame", gi->startUIFrame}});
         }
         if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::milliseconds(frameDelayMs));
-        // The last composed image under the panels (made in the GI context, copied across by the bridge).
-        int backgroundWidth = 0, backgroundHeight = 0;
-        const unsigned background = window.bridge().windowTexture(editor.composite(), backgroundWidth, backgroundHeight);
-        window.drawBackground(background, backgroundWidth, backgroundHeight);
-        // A screenshot the editor asked for: the scene before the panels are drawn, then the window.
-        std::vector<uint8_t> scene;
-        if (editor.screenshotRequest()) scene = window.readBackBuffer(width, height);
-        window.renderUI();
-        if (editor.screenshotRequest()) editor.writeScreenshot(scene, window.readBackBuffer(width, height), width, height);
         bool done = (frames > 0 && frame >= frames) || (scriptEnd > 0 && frame >= scriptEnd && seconds == 0.0);
         if (seconds > 0.0 && std::chrono::duration<double>(now - start).count() >= seconds && (scriptFile.empty() || scriptEnd > 0))
             done = true;
+        // The last composed image under the panels (made in the GI context, copied across by the
+        // bridge). A frame that shows nothing new is not drawn or presented (its time is then the
+        // editor's work alone); a screenshot's frames always are.
+        int backgroundWidth = 0, backgroundHeight = 0;
+        const unsigned background = window.bridge().windowTexture(editor.composite(), backgroundWidth, backgroundHeight);
+        const bool changed = window.finishUI(background, backgroundWidth, backgroundHeight);
+        drawn = changed || editor.screenshotRequest() || (done && !screenshot.empty());
+        if (drawn) {
+            window.drawBackground(background, backgroundWidth, backgroundHeight);
+            // A screenshot the editor asked for: the scene before the panels are drawn, then the window.
+            std::vector<uint8_t> scene;
+            if (editor.screenshotRequest()) scene = window.readBackBuffer(width, height);
+            window.renderUI();
+            if (editor.screenshotRequest()) editor.writeScreenshot(scene, window.readBackBuffer(width, height), width, height);
+        }
         // A screenshot shows the full frame of the final settings, not a drag's preview: the UI
         // goes on, at a gentle pace, until the GI thread has it (for at most kSettleSeconds).
         constexpr double kSettleSeconds = 600.0;
@@ -183,7 +195,7 @@ int run(int argc, char** argv) {
             std::printf("%s\n", screenshot.c_str());
             if (!options.reference.empty()) std::printf("%s\n", editor.referenceSummary().c_str());
         }
-        window.swap();
+        if (drawn) window.swap();
         if (done) break;
         if (editor.title() != title) window.setTitle(title = editor.title());
     }
@@ -193,7 +205,7 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "gi-editor: the layout was not saved: %s\n", e.what());
     }
     if (!uiStats.empty()) {
-        gi::json stats = {{"uiFrameMs", uiFrameMs}, {"giFrameMs", giFrameMs}, {"giFrames", giFrames}, {"editor", editor.state()}};
+        gi::json stats = {{"uiFrameMs", uiFrameMs}, {"uiFrameDrawn", uiFrameDrawn}, {"giFrameMs", giFrameMs}, {"giFrames", giFrames}, {"editor", editor.state()}};
         gi::writeFileAtomic(uiStats, stats.dump(2) + "\n");
     }
     if (timedOut)

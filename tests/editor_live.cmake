@@ -3,7 +3,7 @@
 # height for each frame of a drag, the full frame once the drag ends, nothing while the picture
 # does not change, nothing while paused though a value changed, and the full frame on resume.
 # The UI frames go on while the GI thread renders each frame (counted; their times are reported,
-# not asserted: speed is measured, not tested). -DEDITOR and -DWORK (a scratch folder) come from tests/CMakeLists.txt.
+# not asserted: speed is measured, not tested); frames that show nothing new are not drawn. -DEDITOR and -DWORK (a scratch folder) come from tests/CMakeLists.txt.
 include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 file(WRITE ${WORK}/live.txt
 "wait
@@ -106,3 +106,31 @@ math(EXPR mid "${duringCount} / 2")
 list(GET during ${mid} median)
 list(GET during -1 slowest)
 message("UI frames while the GI rendered: ${duringCount}, median ${median} ms, slowest ${slowest} ms")
+
+# A frame that shows nothing new is neither drawn nor presented (Window::finishUI): while the GI
+# renders and nothing moves, most UI frames are undrawn, and each frame that takes a GI frame
+# (a new image) is drawn. uiFrameDrawn[k] belongs to UI frame k + 1, as uiFrameMs[k].
+string(JSON frameCount LENGTH "${stats}" uiFrameDrawn)
+set(drawnCount 0)
+math(EXPR lastFrame "${frameCount} - 1")
+foreach(k RANGE ${lastFrame})
+  string(JSON d GET "${stats}" uiFrameDrawn ${k})
+  if(d)
+    math(EXPR drawnCount "${drawnCount} + 1")
+  endif()
+endforeach()
+message("UI frames drawn: ${drawnCount} of ${frameCount}")
+math(EXPR half "${frameCount} / 2")
+if(NOT drawnCount LESS half)
+  message(FATAL_ERROR "${drawnCount} of ${frameCount} UI frames were drawn: frames that show nothing new should not be")
+endif()
+foreach(i RANGE ${last})
+  string(JSON end GET "${stats}" giFrames ${i} uiFrame)
+  math(EXPR k "${end} - 1")
+  if(k LESS frameCount)
+    string(JSON d GET "${stats}" uiFrameDrawn ${k})
+    if(NOT d)
+      message(FATAL_ERROR "UI frame ${end}, which took GI frame ${i} (a new image), was not drawn")
+    endif()
+  endif()
+endforeach()

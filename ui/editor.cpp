@@ -196,6 +196,11 @@ std::string Editor::title() const {
 
 void Editor::frame(int width, int height, float dt, float workMs) {
     mFrameMs = mFrameMs == 0.0f ? workMs : 0.9f * mFrameMs + 0.1f * workMs;
+    // Shown twice a second: a number that changed every frame would make every frame one to draw.
+    if (auto now = std::chrono::steady_clock::now(); now - mFrameMsShownAt > std::chrono::milliseconds(500)) {
+        mShownFrameMs = mFrameMs;
+        mFrameMsShownAt = now;
+    }
 
     CameraSettings camera = mPreset.camera;
     if (camera.sceneCamera >= 0 && camera.sceneCamera < int(mScene.cameras.size())) {

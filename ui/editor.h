@@ -18,6 +18,7 @@
 #include "ui/pass_panel.h"
 #include "ui/reference_panel.h"
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -190,6 +191,8 @@ private:
     gl::Framebuffer mOutputFBO;         // wraps the renderer's output for the blit into the composite
     int mWidth, mHeight;
     float mFrameMs = 0.0f;
+    float mShownFrameMs = 0.0f;  // mFrameMs as Stats shows it, taken twice a second
+    std::chrono::steady_clock::time_point mFrameMsShownAt;
     float mRenderMs = 0.0f;             // the last GI frame's renderer call
     glm::ivec2 mRenderSize{0};          // and its size
     std::optional<GIFrame> mRendered;   // this UI frame's GI frame

@@ -26,12 +26,17 @@ ImTextureID TextureBridge::id(const gl::Texture& texture) {
     Copy& c = mCopies[texture.id()];
     c.lastUsed = mFrame;
     if (mLive) {
-        c.width = texture.width();
-        c.height = texture.height();
-        c.pixels.resize(size_t(c.width) * size_t(c.height) * 4);
+        // Read into a scratch buffer: an image that did not change is not uploaded again, so a
+        // frame that shows nothing new stays undrawn (Window::finishUI).
+        mScratch.resize(size_t(texture.width()) * size_t(texture.height()) * 4);
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glGetTextureImage(texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(c.pixels.size()), c.pixels.data());
-        c.fresh = true;
+        glGetTextureImage(texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(mScratch.size()), mScratch.data());
+        if (c.width != texture.width() || c.height != texture.height() || c.texture == 0 || mScratch != c.pixels) {
+            c.width = texture.width();
+            c.height = texture.height();
+            c.pixels.swap(mScratch);
+            c.fresh = true;
+        }
     }
     return ImTextureID(uintptr_t(texture.id()) | kBridgeTag);
 }
@@ -52,6 +57,7 @@ void TextureBridge::upload(Copy& c) {
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(c.texture, 0, 0, 0, c.width, c.height, GL_RGBA, GL_UNSIGNED_BYTE, c.pixels.data());
+    ++mUploads;
 }
 
 void TextureBridge::resolve(ImDrawData* drawData) {

@@ -32,6 +32,8 @@ public:
     void resolve(ImDrawData* drawData);
     // Window's context: the copy of a bridged texture (0 when there is none), for a blit.
     unsigned windowTexture(const gl::Texture& texture, int& width, int& height);
+    // How many images the window's context has received so far (a new one changes the window).
+    uint64_t uploads() const { return mUploads; }
 
 private:
     struct Copy {
@@ -45,6 +47,8 @@ private:
     std::map<unsigned, Copy> mCopies;  // by the GI context's texture name
     bool mLive = false;
     uint64_t mFrame = 0;
+    uint64_t mUploads = 0;
+    std::vector<uint8_t> mScratch;  // a read-back, compared with the copy before it replaces it
     void upload(Copy& c);
 };
 

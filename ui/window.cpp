@@ -13,6 +13,10 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <functional>
+#include <iterator>
+#include <string_view>
+
 namespace gi::ui {
 
 Window::Window(int width, int height, const char* title) : mKeys(std::make_unique<KeyEventQueue>()) {
@@ -52,6 +56,7 @@ Window::Window(int width, int height, const char* title) : mKeys(std::make_uniqu
     glfwSetCharCallback(mWindow, [](GLFWwindow* w, unsigned int c) {
         if (c != 0) static_cast<Window*>(glfwGetWindowUserPointer(w))->mKeys->push({0, 0, 0, 0, c});
     });
+    glfwSetWindowRefreshCallback(mWindow, [](GLFWwindow* w) { static_cast<Window*>(glfwGetWindowUserPointer(w))->mDamaged = true; });
     glfwSetKeyCallback(mWindow, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
         static_cast<Window*>(glfwGetWindowUserPointer(w))->mKeys->push({key, scancode, action, mods});
     });
@@ -133,9 +138,39 @@ double Window::beginFrame(double waitSeconds) {
 
 void Window::wake() { glfwPostEmptyEvent(); }
 
-void Window::renderUI() {
+namespace {
+// Folds the bytes of a range into a running hash.
+template <class T>
+size_t hashInto(size_t seed, const T* data, size_t count) {
+    size_t h = std::hash<std::string_view>{}(std::string_view(reinterpret_cast<const char*>(data), count * sizeof(T)));
+    return seed ^ (h + 0x9e3779b97f4a7c15ull + (seed << 6) + (seed >> 2));
+}
+}  // namespace
+
+bool Window::finishUI(unsigned background, int backgroundWidth, int backgroundHeight) {
     ImGui::Render();
-    mBridge->resolve(ImGui::GetDrawData());
+    ImDrawData* data = ImGui::GetDrawData();
+    mBridge->resolve(data);
+    int width, height;
+    framebufferSize(width, height);
+    const uint64_t frame[] = {uint64_t(width), uint64_t(height), background, uint64_t(backgroundWidth),
+                              uint64_t(backgroundHeight), mBridge->uploads()};
+    size_t h = hashInto(0, frame, std::size(frame));
+    for (int i = 0; data && i < data->CmdListsCount; ++i) {
+        const ImDrawList* list = data->CmdLists[i];
+        h = hashInto(h, list->VtxBuffer.Data, size_t(list->VtxBuffer.Size));
+        h = hashInto(h, list->IdxBuffer.Data, size_t(list->IdxBuffer.Size));
+        for (const ImDrawCmd& cmd : list->CmdBuffer) {
+            const uint64_t c[] = {uint64_t(uintptr_t(cmd.TextureId)), cmd.VtxOffset, cmd.IdxOffset, cmd.ElemCount,
+                                  uint64_t(uintptr_t(cmd.UserCallback))};
+            h = hashInto(hashInto(h, c, std::size(c)), &cmd.ClipRect.x, 4);
+        }
+    }
+    mFingerprint = h;
+    return mDamaged || h != mPresented || glfwGetTime() - mPresentedAt > 1.0;
+}
+
+void Window::renderUI() {
     int width, height;
     framebufferSize(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -156,7 +191,12 @@ std::vector<uint8_t> Window::readBackBuffer(int& width, int& height) const {
     return pixels;
 }
 
-void Window::swap() { glfwSwapBuffers(mWindow); }
+void Window::swap() {
+    glfwSwapBuffers(mWindow);
+    mPresented = mFingerprint;
+    mPresentedAt = glfwGetTime();
+    mDamaged = false;
+}
 
 void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(mWindow, &width, &height); }
 

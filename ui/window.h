@@ -41,10 +41,18 @@ public:
     double beginFrame(double waitSeconds = 0.0);
     // Ends a wait in beginFrame; any thread.
     static void wake();
-    // Draws the ImGui frame over whatever the back buffer holds.
+    // Ends the ImGui frame: ImGui::Render, the bridge's new images uploaded and the draw data
+    // pointed at them. Returns whether the window would show anything other than what it last
+    // presented: the draw data (vertices, indices, commands), the background texture, an image the
+    // bridge uploaded, the framebuffer's size, or the window system asking for a redraw (an
+    // expose), or a second gone by. A frame that shows nothing new need not be drawn or swapped,
+    // which leaves the cores to the GI.
+    bool finishUI(unsigned background, int backgroundWidth, int backgroundHeight);
+    // Draws the ImGui frame (after finishUI) over whatever the back buffer holds.
     void renderUI();
     // The back buffer as RGBA8, bottom row first, alpha forced opaque. Call before swap().
     std::vector<uint8_t> readBackBuffer(int& width, int& height) const;
+    // Presents the back buffer; what finishUI fingerprinted is now what the window shows.
     void swap();
 
     void framebufferSize(int& width, int& height) const;
@@ -71,6 +79,10 @@ private:
     std::unique_ptr<TextureBridge> mBridge;  // images from the GI context; its copies live in the window's
     unsigned mBackgroundFBO = 0;      // the window context's own (framebuffers are not shared)
     std::unique_ptr<KeyEventQueue> mKeys;  // GLFW's key events, handed to ImGui one change per key per frame
+    size_t mFingerprint = 0;          // finishUI's, of the frame being made
+    size_t mPresented = 0;            // that of the frame last presented
+    double mPresentedAt = -1.0;       // glfwGetTime() then
+    bool mDamaged = true;             // the window system asked for a redraw
 };
 
 }  // namespace gi::ui

@@ -13,7 +13,7 @@ namespace gi::ui {
 
 void Editor::statsPanel() {
     ImGui::TextWrapped("%s", mGLRenderer.c_str());
-    ImGui::Text("UI %.1f ms a frame, viewport %dx%d", mFrameMs, mWidth, mHeight);
+    ImGui::Text("UI %.1f ms a frame, viewport %dx%d", mShownFrameMs, mWidth, mHeight);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("the UI's work per frame; while the GI renders and nothing happens the UI waits for input, so the GI gets the cores");
     // The GI renders only when its image would change: say what the picture on screen is.
