@@ -8,7 +8,7 @@ include(${CMAKE_CURRENT_LIST_DIR}/editor_common.cmake)
 file(WRITE ${WORK}/layout.json
   "{\"leftWidth\": 380, \"rightWidth\": 300, \"previewers\": {\"vct.cones\": true}, \"dragPreview\": 2, "
   "\"sections\": {\"presets\": false, \"lpv\": true, \"lpv/developer\": true}}\n")
-file(WRITE ${WORK}/script.txt "wait\nsection render/developer open\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
+file(WRITE ${WORK}/script.txt "wait\nsection render/developer open\nsection quality open\nresize 1200x700\nwait\nwait\nwait\nwait\nwait\nwait\nhelp\nwait\nscreenshot ${WORK}/shot\nwait\n")
 run_under_xvfb(1400x900x24 ${EDITOR} --width 1000 --height 600 --layout ${WORK}/layout.json
                --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json --screenshot ${WORK}/resized.png)
 file(READ ${WORK}/stats.json stats)
@@ -56,7 +56,8 @@ string(JSON savedPresets GET "${saved}" sections presets)
 string(JSON savedLpv GET "${saved}" sections lpv)
 expect("saved sections (presets, lpv)" "${savedPresets} ${savedLpv}" "OFF ON")
 # Each section shows what an artist tunes; the developer settings sit in a node, closed unless
-# the layout (lpv/developer) or the script's `section` (render/developer) opens it.
+# the layout (lpv/developer) or the script's `section` (render/developer) opens it. The quality
+# section is opened by the script too: all of it is developer settings, so none of it is drawn.
 string(JSON shown GET "${stats}" editor fieldsShown)
 foreach(key vct.intensity vct.gridResolution lpv.intensity lpv.nudge render.shadowMapSize render.shadowBias)
   if(NOT shown MATCHES "\"${key}\"")

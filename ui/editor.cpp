@@ -230,8 +230,7 @@ void Editor::frame(int width, int height, float dt, float workMs) {
     // F1: help; F12: a screenshot of the window and of the viewport, named after the time.
     if (ImGui::IsKeyPressed(290 /* GLFW_KEY_F1 */, false)) mShowHelp = !mShowHelp;
     // F flips between A and the live image (B) once A is held.
-    if (!io.WantTextInput && !io.KeyCtrl && mSnapshotA && ImGui::IsKeyPressed('F', false))  // GLFW_KEY_F
-        mCompareView = mCompareView == CompareView::A ? CompareView::Live : CompareView::A;
+    if (!io.WantTextInput && !io.KeyCtrl && mSnapshotA && ImGui::IsKeyPressed('F', false)) flipCompare();  // GLFW_KEY_F
     if (ImGui::IsKeyPressed(301 /* GLFW_KEY_F12 */, false)) requestScreenshot();
 
     mRendered.reset();

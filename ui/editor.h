@@ -297,6 +297,8 @@ private:
     void comparePanel();
     void holdSnapshot();            // context held, the image up to date
     bool comparing() const { return mSnapshotA && mCompareView != CompareView::Live; }
+    // F and the Flip button: A, or back to the live image.
+    void flipCompare() { mCompareView = mCompareView == CompareView::A ? CompareView::Live : CompareView::A; }
     void drawComparison(const ViewportRect& target, bool drawImages);  // A over the composite, the labels
     void diffWithFile(const std::filesystem::path& path);
     json compareState() const;  // for state(): whether A is held, the view, the keys A -> B and file -> editor

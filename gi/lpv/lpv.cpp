@@ -195,7 +195,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("lpv.rsm");
     const FrameSettings& fs = ctx.settings;
     const Bounds& bounds = ctx.scene.bounds();
-    float sceneRadius = std::max(0.5f * glm::length(bounds.extent()), 1e-3f);
+    const float sceneRadius = bounds.radius();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);

@@ -12,7 +12,6 @@ namespace gi {
 
 namespace {
 
-constexpr float kFovY = 40.0f;
 // The frame is fitted and scored as a square: the window's aspect is not known when the scene
 // loads, and a square's fit still holds vertically in any wider frame.
 constexpr float kAspect = 1.0f;
@@ -63,7 +62,7 @@ Framing frameScene(const Scene& scene, const PathTracer& tracer) {
     out.how = "from outside, along a diagonal (not enclosed";
     if (!scene.bounds.valid() || scene.triangleCount() == 0) return out;
     const glm::vec3 center = scene.bounds.center(), extent = scene.bounds.extent();
-    const float radius = std::max(0.5f * glm::length(extent), 1e-3f);
+    const float radius = scene.bounds.radius();
     const float tnear = radius * 1e-4f;
 
     // 1. Is the centre inside an enclosure?
@@ -89,7 +88,7 @@ Framing frameScene(const Scene& scene, const PathTracer& tracer) {
         float room = 0.0f;  // distance from the centre to the eye
         const char* axis = "";
     };
-    const float ty = std::tan(glm::radians(kFovY) * 0.5f);
+    const float ty = std::tan(glm::radians(out.camera.fovY) * 0.5f);
     std::vector<Candidate> candidates;
     const struct {
         glm::vec3 d;
@@ -101,14 +100,13 @@ Framing frameScene(const Scene& scene, const PathTracer& tracer) {
         // 5 % of margin around the cross-section.
         float fit = 1.05f * std::max(0.5f * extent.y / ty, halfWidth / (ty * kAspect));
         Candidate c;
+        c.camera = out.camera;  // frameBounds' field of view, up and near plane
         c.axis = a.name;
         PathTracer::SurfaceHit behind = tracer.nearestSurface(center, -a.d, tnear);
         c.open = behind.t < 0.0f;
         c.room = c.open ? halfDepth + fit : std::min(halfDepth + fit, 0.9f * behind.t);
         c.camera.eye = center - a.d * c.room;
         c.camera.target = center;
-        c.camera.fovY = kFovY;
-        c.camera.near = radius * 2e-3f;
         c.camera.far = (c.room + radius) * 1.5f;
         candidates.push_back(c);
     }

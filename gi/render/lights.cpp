@@ -46,7 +46,7 @@ glm::mat4 cubeFaceViewProj(const glm::vec3& position, int face, float far) {
 
 void setShadowProjection(light::GPULight& g, const LightSettings& l, const Bounds& b, int size) {
     glm::vec3 center = b.center();
-    float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);
+    const float radius = b.radius();
     glm::vec3 dir(g.direction);
     if (l.type == LightType::Directional) {
         glm::mat4 view = glm::lookAt(center - dir * radius * 2.0f, center, light::shadowUp(dir));

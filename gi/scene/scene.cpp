@@ -195,7 +195,7 @@ Scene loadScene(const std::string& scene, const std::filesystem::path& presetFol
 
 CameraSettings frameBounds(const Bounds& b) {
     CameraSettings c;
-    float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);
+    const float radius = b.radius();
     c.target = b.center();
     c.fovY = 40.0f;
     float dist = radius / std::sin(glm::radians(c.fovY * 0.5f));

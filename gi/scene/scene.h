@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -92,6 +93,8 @@ struct Bounds {
     bool valid() const { return min.x <= max.x; }
     glm::vec3 center() const { return (min + max) * 0.5f; }
     glm::vec3 extent() const { return max - min; }
+    // Half the diagonal, at least 1 mm: the scale framing, light placement and grids fit to.
+    float radius() const { return std::max(0.5f * glm::length(extent()), 1e-3f); }
 };
 
 // Emissive triangles grouped into area lights when the scene loads (buildEmitters): connected

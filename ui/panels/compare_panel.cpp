@@ -135,7 +135,7 @@ void Editor::comparePanel() {
         ImGui::RadioButton("split", &view, int(CompareView::Split));
         mCompareView = CompareView(view);
         ImGui::SameLine();
-        if (ImGui::SmallButton("Flip (F)")) mCompareView = mCompareView == CompareView::A ? CompareView::Live : CompareView::A;
+        if (ImGui::SmallButton("Flip (F)")) flipCompare();
         if (mCompareView == CompareView::Split) ImGui::SliderFloat("A | B", &mCompareSplit, 0.0f, 1.0f, "%.2f");
         ImGui::TextUnformatted(sideText("A", mSnapshotA->ms, mSnapshotA->size, mSnapshotA->ssim).c_str());
         ImGui::TextUnformatted(sideText("B", mRenderMs, mRenderSize, mReference.ssim()).c_str());
