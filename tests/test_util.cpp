@@ -2,10 +2,12 @@
 
 #include "gi/gl/debug.h"
 #include "gi/preset/preset.h"
+#include "gi/render/image_io.h"
 #include "gi/scene/mesh_builder.h"
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 namespace gi::test {
@@ -15,12 +17,21 @@ EGLContextHeadless& context() {
     return ctx;
 }
 
-std::filesystem::path tempDir() {
+namespace {
+
+// SUITE_NAME of the running test, with anything but letters and digits made '_' (a file name).
+std::string currentTestName() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = std::string(info->test_suite_name()) + "_" + info->name();
     for (auto& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    auto dir = std::filesystem::temp_directory_path() / "gi_tests" / name;
+    return name;
+}
+
+}  // namespace
+
+std::filesystem::path tempDir() {
+    auto dir = std::filesystem::temp_directory_path() / "gi_tests" / currentTestName();
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
@@ -86,6 +97,16 @@ FrameSettings skyFrame(const Scene& scene, const std::string& technique) {
 double meanIndirect(Renderer& r, const FrameSettings& fs) {
     r.render(fs);
     std::vector<float> px = r.readIndirectRadiance();
+    if (const char* dir = std::getenv("GI_TEST_IMAGES"); dir && *dir) {
+        // The image each measurement averaged, numbered in the order the test takes them.
+        static std::string test;
+        static int count = 0;
+        std::string name = currentTestName();
+        count = name == test ? count + 1 : 0;
+        test = name;
+        std::filesystem::create_directories(dir);
+        writeEXR(std::filesystem::path(dir) / (name + "_" + std::to_string(count) + ".exr"), fs.width, fs.height, px);
+    }
     double sum = 0;
     for (size_t i = 0; i < px.size(); i += 4) sum += 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
     return sum / double(px.size() / 4);

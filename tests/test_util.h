@@ -34,7 +34,9 @@ Scene openFloor();
 Scene closedBox();
 FrameSettings skyFrame(const Scene& scene, const std::string& technique);
 // Mean luminance of the indirect light the lighting pass adds (Renderer::readIndirectRadiance)
-// after rendering fs.
+// after rendering fs. With GI_TEST_IMAGES=DIR set, it also writes the image it averaged as
+// DIR/SUITE_TEST_K.exr, K counting the test's measurements from 0 (to see what a figure means:
+// where a leak is, what a sky test's floor gathered).
 double meanIndirect(Renderer& r, const FrameSettings& fs);
 
 // A GL test fails on any GL debug error raised during it.
