@@ -5,7 +5,6 @@
 #include "common/sh.h"
 #include "gi/lpv/lpv.h"
 #include "gi/preset/preset.h"
-#include "gi/reference/reference_cache.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/mesh_builder.h"
 #include "test_util.h"
@@ -388,15 +387,8 @@ TEST_F(LPVGL, PointLightIndirectMatchesTheReference) {
     FrameSettings fs = roomSettings(scene, 256);
     fs.render.specular = false;
     fs.lpv.bounces = 1;
-    ReferenceSettings rs;
-    rs.spp = 256;
-    rs.maxBounces = 2;
-    rs.mode = ReferenceMode::Indirect;
-    CachedReference ref = cachedReference(scene, fs, rs);
-    double reference = 0.0;
-    for (size_t i = 0; i < ref.image.rgb.size(); i += 3)
-        reference += 0.2126 * ref.image.rgb[i] + 0.7152 * ref.image.rgb[i + 1] + 0.0722 * ref.image.rgb[i + 2];
-    reference /= double(ref.image.rgb.size() / 3);
+    bool cached = false;
+    double reference = test::referenceOneBounceIndirect(scene, fs, &cached);
     Renderer r;
     r.setScene(scene);
     double defaults = test::meanIndirect(r, fs);
@@ -404,7 +396,7 @@ TEST_F(LPVGL, PointLightIndirectMatchesTheReference) {
     fs.lpv.propagationSteps = 64;
     double fine = test::meanIndirect(r, fs);
     std::printf("mean indirect luminance: reference %.5f (%s); LPV 32^3 (defaults) %.5f, ratio %.3f; LPV 64^3 %.5f, ratio %.3f\n",
-                reference, ref.fromCache ? "cached" : "rendered", defaults, defaults / reference, fine, fine / reference);
+                reference, cached ? "cached" : "rendered", defaults, defaults / reference, fine, fine / reference);
     EXPECT_NEAR(defaults / reference, 1.0, 0.25);
     EXPECT_NEAR(fine / reference, 1.0, 0.25);
 }

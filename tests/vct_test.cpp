@@ -3,7 +3,6 @@
 // invariance, and the memory budget.
 #include "common/sh.h"
 #include "gi/preset/preset.h"
-#include "gi/reference/reference_cache.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/mesh_builder.h"
 #include "gi/vct/cone_set.h"
@@ -365,16 +364,9 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
         }
     double expected = 0.8 * integral / glm::pi<double>();
     // The path tracer agrees with the integral (one bounce of indirect light, as VCT gathers it).
-    ReferenceSettings rs;
-    rs.spp = 256;
-    rs.maxBounces = 2;
-    rs.mode = ReferenceMode::Indirect;
-    CachedReference ref = cachedReference(scene, fs, rs);
-    double reference = 0.0;
-    for (size_t i = 0; i < ref.image.rgb.size(); i += 3)
-        reference += 0.2126 * ref.image.rgb[i] + 0.7152 * ref.image.rgb[i + 1] + 0.0722 * ref.image.rgb[i + 2];
-    reference /= double(ref.image.rgb.size() / 3);
-    std::printf("floor indirect: analytic %.4f, reference %.4f (%s)\n", expected, reference, ref.fromCache ? "cached" : "rendered");
+    bool cached = false;
+    double reference = test::referenceOneBounceIndirect(scene, fs, &cached);
+    std::printf("floor indirect: analytic %.4f, reference %.4f (%s)\n", expected, reference, cached ? "cached" : "rendered");
     EXPECT_NEAR(reference / expected, 1.0, 0.05);
     std::vector<double> lit;
     for (float nudge : {0.0f, 1.0f, 2.0f, 3.0f, 4.0f}) {
