@@ -1,6 +1,7 @@
 #include "test_util.h"
 
 #include "gi/gl/debug.h"
+#include "gi/metrics/metrics.h"
 #include "gi/preset/preset.h"
 #include "gi/reference/reference_cache.h"
 #include "gi/render/image_io.h"
@@ -108,13 +109,7 @@ double meanIndirect(Renderer& r, const FrameSettings& fs) {
         std::filesystem::create_directories(dir);
         writeEXR(std::filesystem::path(dir) / (name + "_" + std::to_string(count) + ".exr"), fs.width, fs.height, px);
     }
-    return meanLuminance(px, 4);
-}
-
-double meanLuminance(const std::vector<float>& px, int channels) {
-    double sum = 0;
-    for (size_t i = 0; i + 2 < px.size(); i += size_t(channels)) sum += 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
-    return sum / double(px.size() / size_t(channels));
+    return meanLuminance(imageFromGL(fs.width, fs.height, px));
 }
 
 double referenceOneBounceIndirect(const Scene& scene, const FrameSettings& fs, bool* cached) {
@@ -124,7 +119,7 @@ double referenceOneBounceIndirect(const Scene& scene, const FrameSettings& fs, b
     rs.mode = ReferenceMode::Indirect;
     CachedReference ref = cachedReference(scene, fs, rs);
     if (cached) *cached = ref.fromCache;
-    return meanLuminance(ref.image.rgb, 3);
+    return meanLuminance(ref.image);
 }
 
 

@@ -38,8 +38,6 @@ FrameSettings skyFrame(const Scene& scene, const std::string& technique);
 // DIR/SUITE_TEST_K.exr, K counting the test's measurements from 0 (to see what a figure means:
 // where a leak is, what a sky test's floor gathered).
 double meanIndirect(Renderer& r, const FrameSettings& fs);
-// Mean luminance (Rec. 709 weights) of interleaved pixels of `channels` floats, RGB first.
-double meanLuminance(const std::vector<float>& px, int channels);
 // Mean luminance of the path tracer's one bounce of indirect light for fs (two surface bounces,
 // indirect paths only, 256 spp; cached), the light a single-bounce technique gathers.
 // `cached` says whether it came from the cache.

@@ -315,8 +315,9 @@ TEST_F(VCTGL, ToroidalUpdateEqualsFullVoxelization) {
 // floor receives what the panel's underside sends it. The underside is lit from below, as the
 // reference would need it to be to light the floor: a spot 0.1 above the floor's centre (1.5
 // voxels, so the floor's voxel centres lie behind it too) points straight up (outer cone 89
-// degrees, so the floor stays unlit, and no shadow map, which a cone that wide could not have). An emissive panel would not do: emitters reach VCT as
-// area lights, which light other voxels, not their own. (Before issue 13's leak work the panel
+// degrees, so the floor stays unlit, and no shadow map, which a cone that wide could not have).
+// An emissive panel would not do: emitters reach VCT as area lights, which light other voxels,
+// not their own. (Before issue 13's leak work the panel
 // was lit on top and the floor saw it only because isotropic voxels glow on both sides.)
 TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
     Scene scene;
@@ -383,7 +384,7 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
     for (int i = 1; i <= defaultNudge; ++i) EXPECT_GT(lit[i], lit[i - 1]) << "a larger nudge frees more of the cones";
     EXPECT_NEAR(lit[4] / lit[3], 1.0, 0.05) << "past the default nudge the floor should no longer self-occlude";
     // What is missing is the trace's: with the cones sampling kVCTFootprintLod finer than their
-    // width it gathers 89 % at nudge 3 (39 % when the texel was as wide as the cone, before
+    // width it gathers 89 % at nudge 3 (43 % when the texel was as wide as the cone, as before
     // issue 13); one voxel thin and 16 voxels away, the panel still falls between the coarse
     // samples a little.
     EXPECT_GT(lit[3] / expected, 0.75);

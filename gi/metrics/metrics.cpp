@@ -51,12 +51,6 @@ bool namesLinear(std::string colorSpace) {
     return colorSpace == "linear" || colorSpace == "scene_linear" || colorSpace == "lin_srgb";
 }
 
-double meanLuminance(const ImageRGB& image) {
-    double sum = 0.0;
-    for (size_t p = 0; p < pixelCount(image); ++p) sum += luminance(&image.rgb[p * 3]);
-    return pixelCount(image) > 0 ? sum / double(pixelCount(image)) : 0.0;
-}
-
 // RGB8 top row first -> RGBA8 bottom row first, which gi::writePNG takes.
 std::vector<uint8_t> toGLOrder(const std::vector<uint8_t>& rgb, int width, int height) {
     std::vector<uint8_t> rgba(size_t(width) * height * 4);
@@ -74,6 +68,12 @@ std::vector<uint8_t> toGLOrder(const std::vector<uint8_t>& rgb, int width, int h
 }
 
 }  // namespace
+
+double meanLuminance(const ImageRGB& image) {
+    double sum = 0.0;
+    for (size_t p = 0; p < pixelCount(image); ++p) sum += luminance(&image.rgb[p * 3]);
+    return pixelCount(image) > 0 ? sum / double(pixelCount(image)) : 0.0;
+}
 
 ImageRGB loadImageLinear(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path)) throw Error(path.string() + ": no such image file");

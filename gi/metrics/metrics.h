@@ -92,6 +92,9 @@ ImageRGB loadImageLinear(const std::filesystem::path& path);
 // From the renderer's readback: RGBA, bottom row first.
 ImageRGB imageFromGL(int width, int height, const std::vector<float>& rgba);
 
+// Mean Rec. 709 luminance of a linear image (0 for an empty one).
+double meanLuminance(const ImageRGB& image);
+
 // RGB8, top row first: clamp to [0, 1], sRGB encode as shaders/common/color.glsl linearToSRGB
 // does, round to nearest.
 std::vector<uint8_t> encodeSRGB8(const ImageRGB& image);
