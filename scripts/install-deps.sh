@@ -10,6 +10,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtbb-dev libeigen3-dev
   xvfb xauth xdotool assimp-testmodels
+  chromium
   clang libclang-rt-dev
 )
 

@@ -1,0 +1,134 @@
+// gi-matrix: runs a comparison matrix (gi/matrix/matrix.h): every scene x technique variant x
+// sweep point of a spec, each cell a gi-render process scored against the path-traced
+// reference, into results.csv, results.json and a static HTML report (index.html).
+#include "gi/matrix/matrix.h"
+#include "gi/matrix/report.h"
+#include "gi/matrix/run.h"
+#include "gi/util/error.h"
+#include "gi/util/paths.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// gi-render beside this executable (the build tree and an install keep them together).
+fs::path defaultRenderer() {
+    std::error_code ec;
+    fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path("gi-render") : self.parent_path() / "gi-render";
+}
+
+std::string titleOf(const fs::path& dir) {
+    std::error_code ec;
+    fs::path p = dir / "matrix.json";
+    if (!fs::is_regular_file(p, ec)) return dir.filename().string();
+    try {
+        return json::parse(gi::readTextFile(p, 1 << 20)).value("name", dir.filename().string());
+    } catch (const std::exception&) {
+        return dir.filename().string();
+    }
+}
+
+void printProgress(const gi::matrix::RunProgress& p) {
+    std::string what;
+    if (p.wasSkipped) {
+        what = "done before (--resume)";
+    } else if (p.result->ok()) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "SSIM %.4f, %.1f ms (%.1f s)", p.result->ssim, p.result->msTotal, p.result->wallSeconds);
+        what = p.result->scene + " / " + p.result->label + ": " + buf;
+    } else {
+        what = p.result->scene + " / " + p.result->label + ": " + p.result->status + ": " + p.result->error;
+    }
+    std::string left = p.remainingSeconds >= 0.0 ? ", ~" + gi::matrix::formatDuration(p.remainingSeconds) + " left" : "";
+    std::fprintf(stderr, "gi-matrix: [%zu/%zu] %s | %zu done, %zu failed, %zu skipped, %s elapsed%s\n", p.index, p.total, what.c_str(),
+                 p.done, p.failed, p.skipped, gi::matrix::formatDuration(p.elapsedSeconds).c_str(), left.c_str());
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"gi-matrix: render every cell of a comparison matrix and report SSIM against the reference, cost and leaks"};
+    std::string specPath, outDir, shard, renderer;
+    std::vector<std::string> mergeDirs;
+    bool resume = false, list = false;
+    app.add_option("spec", specPath, "The matrix spec (.json; format in gi/matrix/matrix.h and the README)");
+    app.add_option("--out", outDir, "Output folder: cells/, results.csv, results.json, index.html")->required();
+    app.add_flag("--resume", resume, "Skip cells whose result is already in --out");
+    app.add_option("--shard", shard, "Run only the i-th of n disjoint slices of the cells, as i/n (0-based)");
+    app.add_option("--renderer", renderer, "The gi-render executable (default: the one beside gi-matrix)");
+    app.add_flag("--list", list, "Print the cells (and the shard's) and exit");
+    app.add_option("--merge", mergeDirs, "Join the results of these output folders (e.g. one per shard) into --out")->expected(1, -1);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "gi-matrix: %s (see --help)\n", e.what());
+        return 2;
+    }
+
+    if (!mergeDirs.empty()) {
+        if (!specPath.empty()) throw gi::Error("--merge takes output folders, not a spec");
+        fs::create_directories(outDir);
+        std::string title;
+        for (const std::string& d : mergeDirs) {
+            if (!fs::is_directory(fs::path(d) / "cells")) throw gi::Error(d + ": no cells/ folder (not a gi-matrix output folder)");
+            if (title.empty()) title = titleOf(d);
+            if (fs::equivalent(d, outDir)) continue;
+            fs::copy(fs::path(d) / "cells", fs::path(outDir) / "cells", fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+        }
+        auto results = gi::matrix::collectResults(outDir);
+        gi::matrix::writeResults(outDir, title, results);
+        if (fs::path(mergeDirs.front()) / "matrix.json" != fs::path(outDir) / "matrix.json" &&
+            fs::exists(fs::path(mergeDirs.front()) / "matrix.json"))
+            fs::copy_file(fs::path(mergeDirs.front()) / "matrix.json", fs::path(outDir) / "matrix.json", fs::copy_options::overwrite_existing);
+        size_t failed = size_t(std::count_if(results.begin(), results.end(), [](const auto& r) { return !r.ok(); }));
+        std::fprintf(stderr, "gi-matrix: merged %zu cells (%zu failed) into %s/index.html\n", results.size(), failed, outDir.c_str());
+        return failed ? 3 : 0;
+    }
+
+    if (specPath.empty()) throw gi::Error("no spec given (gi-matrix SPEC.json --out DIR, or --merge DIR... --out DIR)");
+    gi::matrix::MatrixSpec spec = gi::matrix::loadSpec(specPath);
+    std::vector<gi::matrix::Cell> cells = gi::matrix::expandCells(spec);
+    size_t all = cells.size();
+    if (!shard.empty()) {
+        auto [i, n] = gi::matrix::parseShard(shard);
+        cells = gi::matrix::shardOf(cells, i, n);
+    }
+    if (list) {
+        for (const auto& c : cells) std::printf("%s\t%s\t%s\n", c.sceneLabel.c_str(), c.technique.c_str(), c.label.c_str());
+        std::fprintf(stderr, "gi-matrix: %zu cells%s\n", cells.size(), shard.empty() ? "" : (" of " + std::to_string(all)).c_str());
+        return 0;
+    }
+    gi::matrix::RunOptions options;
+    options.renderer = renderer.empty() ? defaultRenderer() : fs::path(renderer);
+    if (access(options.renderer.c_str(), X_OK) != 0)
+        throw gi::Error(options.renderer.string() + ": no such executable (build gi-render, or name it with --renderer)");
+    options.outDir = outDir;
+    options.resume = resume;
+    options.progress = printProgress;
+    fs::create_directories(outDir);
+    json info = {{"name", spec.name}, {"spec", fs::absolute(specPath).string()}, {"width", spec.width}, {"height", spec.height},
+                 {"frames", spec.frames}, {"spp", spec.spp}, {"cells", all}};
+    gi::writeFileAtomic(fs::path(outDir) / "matrix.json", info.dump(2) + "\n");
+    std::fprintf(stderr, "gi-matrix: %s: %zu cells%s at %dx%d, reference %d spp, timeout %g s per cell\n", spec.name.c_str(),
+                 cells.size(), shard.empty() ? "" : (" (shard " + shard + " of " + std::to_string(all) + ")").c_str(), spec.width,
+                 spec.height, spec.spp, spec.timeoutSeconds);
+    gi::matrix::RunSummary s = gi::matrix::runCells(spec, cells, options);
+    // The report covers every cell in the folder: other shards' too when they share it.
+    auto results = gi::matrix::collectResults(outDir);
+    gi::matrix::writeResults(outDir, spec.name, results);
+    std::fprintf(stderr, "gi-matrix: %zu done, %zu failed, %zu skipped in %s; report: %s\n", s.done, s.failed, s.skipped,
+                 gi::matrix::formatDuration(s.seconds).c_str(), (fs::path(outDir) / "index.html").c_str());
+    return s.failed ? 3 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return gi::reportErrors("gi-matrix", [&] { return run(argc, argv); }); }
