@@ -4,6 +4,8 @@
 #include "gi/matrix/matrix.h"
 #include "gi/matrix/report.h"
 #include "gi/matrix/run.h"
+#include "gi/matrix/tune.h"
+#include "gi/preset/preset.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
 
@@ -64,6 +66,21 @@ int run(int argc, char** argv) {
     app.add_option("--renderer", renderer, "The gi-render executable (default: the one beside gi-matrix)");
     app.add_flag("--list", list, "Print the cells (and the shard's) and exit");
     app.add_option("--merge", mergeDirs, "Join the results of these output folders (e.g. one per shard) into --out")->expected(1, -1);
+    std::string tuneInput, technique;
+    double budgetMs = 0.0;
+    size_t renders = 27;
+    bool grid = false;
+    int width = 128, height = 96, frames = 4, spp = 256, camera = -1;
+    app.add_option("--tune", tuneInput, "Auto-tune: search --technique's settings on this preset or glTF file");
+    app.add_option("--technique", technique, "--tune: the technique whose settings are searched");
+    app.add_option("--budget-ms", budgetMs, "--tune: the frame time the result must stay within, ms (as measured here)")->check(CLI::PositiveNumber);
+    app.add_option("--renders", renders, "--tune: renders the search may spend")->check(CLI::Range(1, 1000));
+    app.add_flag("--grid", grid, "--tune: search a grid of the same number of renders instead (the baseline)");
+    app.add_option("--width", width, "--tune: image width")->check(CLI::Range(1, 16384));
+    app.add_option("--height", height, "--tune: image height")->check(CLI::Range(1, 16384));
+    app.add_option("--frames", frames, "--tune: frames per render (the last one is timed)")->check(CLI::Range(1, 10000));
+    app.add_option("--spp", spp, "--tune: samples per pixel of the reference")->check(CLI::Range(1, 65536));
+    app.add_option("--camera", camera, "--tune: the glTF file's camera")->check(CLI::Range(-1, 1023));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -91,6 +108,59 @@ int run(int argc, char** argv) {
         size_t failed = size_t(std::count_if(results.begin(), results.end(), [](const auto& r) { return !r.ok(); }));
         std::fprintf(stderr, "gi-matrix: merged %zu cells (%zu failed) into %s/index.html\n", results.size(), failed, outDir.c_str());
         return failed ? 3 : 0;
+    }
+
+    if (!tuneInput.empty()) {
+        if (!specPath.empty()) throw gi::Error("--tune takes a scene, not a spec");
+        if (technique.empty()) throw gi::Error("--tune needs --technique");
+        if (budgetMs <= 0.0) throw gi::Error("--tune needs --budget-ms");
+        json j = {{"name", "auto-tune " + technique + " within " + std::to_string(int(budgetMs)) + " ms"},
+                  {"width", width}, {"height", height}, {"frames", frames}, {"spp", spp},
+                  {"scenes", json::array({{{"input", fs::absolute(tuneInput).string()}, {"camera", camera}}})},
+                  {"cells", json::array({{{"technique", technique}}})}};
+        gi::matrix::MatrixSpec spec = gi::matrix::specFromJson(j, tuneInput);
+        // The scene's own preset is where the search starts.
+        gi::Preset preset = gi::presetForInput(fs::absolute(tuneInput), camera);
+        gi::matrix::TuneOptions options;
+        options.technique = technique;
+        options.base = gi::presetToJson(preset);
+        options.budgetMs = budgetMs;
+        options.maxRenders = renders;
+        options.run.renderer = renderer.empty() ? defaultRenderer() : fs::path(renderer);
+        if (access(options.run.renderer.c_str(), X_OK) != 0)
+            throw gi::Error(options.run.renderer.string() + ": no such executable (build gi-render, or name it with --renderer)");
+        options.run.outDir = outDir;
+        options.run.resume = true;  // a point rendered before (this search's or another's) is not rendered again
+        if (gi::matrix::tuneSpace(technique, options.base).empty()) throw gi::Error("--technique '" + technique + "' has no settings to tune");
+        options.progress = [&](const gi::matrix::TuneReport& r) {
+            const gi::matrix::TuneStep& s = r.steps.back();
+            std::string figures = s.result.ok() ? "SSIM " + std::to_string(s.result.ssim).substr(0, 6) + ", " +
+                                                      std::to_string(s.result.msTotal).substr(0, 7) + " ms" + (s.withinBudget ? "" : " (over budget)")
+                                                : s.result.status + ": " + s.result.error;
+            std::fprintf(stderr, "gi-matrix: tune [%zu/%zu] %s: %s%s\n", r.renders, renders, s.change.c_str(), figures.c_str(),
+                         s.best ? "  <- best" : "");
+        };
+        fs::create_directories(outDir);
+        gi::matrix::TuneReport report = grid ? gi::matrix::tuneGrid(spec, options) : gi::matrix::tunePatternSearch(spec, options);
+        gi::writeFileAtomic(fs::path(outDir) / "tune.json", gi::matrix::tuneReportToJson(report, budgetMs).dump(2) + "\n");
+        gi::writeFileAtomic(fs::path(outDir) / "matrix.json", json({{"name", spec.name}}).dump(2) + "\n");
+        gi::matrix::writeResults(outDir, spec.name, gi::matrix::collectResults(outDir));
+        if (!report.best || !report.best->withinBudget) {
+            std::fprintf(stderr, "gi-matrix: no setting of %s stays within %g ms here (the cheapest took %.1f ms)\n", technique.c_str(),
+                         budgetMs, report.best ? report.best->result.msTotal : 0.0);
+            return 3;
+        }
+        // The winner as a preset: the scene's own, with the technique and its settings.
+        gi::applySetting(preset, "technique=" + technique);
+        for (const std::string& a : report.best->settings) gi::applySetting(preset, a);
+        fs::path tuned = fs::path(outDir) / "tuned.json";
+        gi::savePreset(preset, tuned);
+        std::string settings;
+        for (const std::string& a : report.best->settings) settings += " " + a;
+        std::fprintf(stderr, "gi-matrix: %s in %zu renders: SSIM %.4f at %.1f ms (budget %g ms) with%s; preset: %s\n",
+                     report.method.c_str(), report.renders, report.best->result.ssim, report.best->result.msTotal, budgetMs,
+                     settings.empty() ? " the defaults" : settings.c_str(), tuned.c_str());
+        return 0;
     }
 
     if (specPath.empty()) throw gi::Error("no spec given (gi-matrix SPEC.json --out DIR, or --merge DIR... --out DIR)");

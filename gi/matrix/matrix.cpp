@@ -191,7 +191,7 @@ MatrixSpec specFromJson(const json& j, const std::string& context, const fs::pat
         const json& c = j["cells"][i];
         std::string where = context + ": cells[" + std::to_string(i) + "]";
         if (!c.is_object()) throw Error(where + ": expected an object with 'technique'");
-        checkKeys(c, {"technique", "label", "set", "sweep", "paperScores"}, where);
+        checkKeys(c, {"technique", "label", "set", "sweep", "paperScores", "scenes"}, where);
         VariantSpec v;
         if (!c.contains("technique") || !c["technique"].is_string()) throw Error(where + ": 'technique' must be a string");
         v.technique = c["technique"].get<std::string>();
@@ -211,6 +211,14 @@ MatrixSpec specFromJson(const json& j, const std::string& context, const fs::pat
                 for (const std::string& value : s.values) each.push_back(s.key + "=" + value);
                 validate(each, where + ".sweep");
                 v.sweeps.push_back(std::move(s));
+            }
+        }
+        if (c.contains("scenes")) {
+            if (!c["scenes"].is_array() || c["scenes"].empty()) throw Error(where + ": 'scenes' must be a non-empty list of scene labels");
+            for (const json& l : c["scenes"]) {
+                if (!l.is_string() || !labels.count(l.get<std::string>()))
+                    throw Error(where + ".scenes: no scene is labelled " + l.dump());
+                v.scenes.push_back(l.get<std::string>());
             }
         }
         if (c.contains("paperScores")) {
@@ -238,12 +246,29 @@ MatrixSpec loadSpec(const fs::path& path) {
     return specFromJson(j, path.string(), path.parent_path());
 }
 
+Cell makeCell(const MatrixSpec& spec, size_t sceneIndex, const std::string& technique, const std::string& label,
+              const std::vector<std::string>& set) {
+    const SceneSpec& scene = spec.scenes.at(sceneIndex);
+    Cell c;
+    c.scene = sceneIndex;
+    c.sceneLabel = scene.label;
+    c.technique = technique;
+    c.label = label;
+    c.set = set;
+    std::string key = scene.input + "\n" + std::to_string(scene.camera) + "\n" + joined(scene.set, "\n") + "\n" + technique + "\n" +
+                      joined(set, "\n") + "\n" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "/" +
+                      std::to_string(spec.frames) + "/" + std::to_string(spec.spp);
+    c.id = slug(label).substr(0, 40) + "-" + hex(fnv1a(key), 12);
+    return c;
+}
+
 std::vector<Cell> expandCells(const MatrixSpec& spec) {
     std::vector<Cell> cells;
     std::vector<std::string> all = techniqueNames();
     for (size_t si = 0; si < spec.scenes.size(); ++si) {
         const SceneSpec& scene = spec.scenes[si];
         for (const VariantSpec& v : spec.variants) {
+            if (!v.scenes.empty() && std::find(v.scenes.begin(), v.scenes.end(), scene.label) == v.scenes.end()) continue;
             std::vector<std::string> techniques = v.technique == "*" ? all : std::vector<std::string>{v.technique};
             // The sweep's product, the first key varying slowest.
             std::vector<std::vector<std::string>> points{{}};
@@ -259,22 +284,15 @@ std::vector<Cell> expandCells(const MatrixSpec& spec) {
             }
             for (const std::string& t : techniques)
                 for (const auto& point : points) {
-                    Cell c;
-                    c.scene = si;
-                    c.sceneLabel = scene.label;
-                    c.technique = t;
-                    c.set = v.set;
-                    c.set.insert(c.set.end(), point.begin(), point.end());
+                    std::vector<std::string> set = v.set;
+                    set.insert(set.end(), point.begin(), point.end());
                     // The label, or the technique, then what varies: the overrides when there is
                     // no label, the sweep point always.
-                    c.label = v.label.empty() ? t : v.technique == "*" ? v.label + " " + t : v.label;
-                    std::vector<std::string> shown = v.label.empty() ? c.set : point;
-                    if (!shown.empty()) c.label += " " + joined(shown, " ");
+                    std::string label = v.label.empty() ? t : v.technique == "*" ? v.label + " " + t : v.label;
+                    std::vector<std::string> shown = v.label.empty() ? set : point;
+                    if (!shown.empty()) label += " " + joined(shown, " ");
+                    Cell c = makeCell(spec, si, t, label, set);
                     if (auto it = v.paperScores.find(scene.label); it != v.paperScores.end()) c.paperScore = it->second;
-                    std::string key = scene.input + "\n" + std::to_string(scene.camera) + "\n" + joined(scene.set, "\n") + "\n" + t +
-                                      "\n" + joined(c.set, "\n") + "\n" + std::to_string(spec.width) + "x" +
-                                      std::to_string(spec.height) + "/" + std::to_string(spec.frames) + "/" + std::to_string(spec.spp);
-                    c.id = slug(c.label).substr(0, 40) + "-" + hex(fnv1a(key), 12);
                     cells.push_back(std::move(c));
                     if (cells.size() > kMaxCells)
                         throw Error(spec.file.string() + ": the matrix has more than " + std::to_string(kMaxCells) +
@@ -282,6 +300,7 @@ std::vector<Cell> expandCells(const MatrixSpec& spec) {
                 }
         }
     }
+    if (cells.empty()) throw Error(spec.file.string() + ": the matrix has no cells (do the variants' 'scenes' name any scene?)");
     std::set<std::string> ids;
     for (const Cell& c : cells)
         if (!ids.insert(c.sceneLabel + "/" + c.id).second)
@@ -401,7 +420,8 @@ CellResult resultFromStats(const Cell& cell, const fs::path& cellDir) {
     r.brightness = numberOr(m, "brightness");
     r.leakFraction = numberOr(m, "leakFraction");
     r.leakEnergy = numberOr(m, "leakEnergy");
-    r.msTotal = numberOr(stats, "gpuMsTotal");
+    // The median frame after the first (gi-render's gpuMsMedian), else the last frame.
+    r.msTotal = numberOr(stats, "gpuMsMedian", numberOr(stats, "gpuMsTotal"));
     r.memoryBytes = numberOr(stats, "memoryBytes");
     r.renderer = stats.value("renderer", std::string());
     if (stats.contains("passes") && stats["passes"].is_array())
@@ -486,6 +506,36 @@ std::vector<size_t> paretoFront(const std::vector<CellResult>& results) {
             best = results[i].ssim;
         }
     return front;
+}
+
+namespace {
+std::vector<double> ranks(const std::vector<double>& v) {
+    std::vector<size_t> order(v.size());
+    for (size_t i = 0; i < v.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
+    std::vector<double> r(v.size());
+    for (size_t i = 0; i < order.size();) {
+        size_t j = i;
+        while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+        for (size_t k = i; k <= j; ++k) r[order[k]] = 0.5 * double(i + j) + 1.0;  // ties share their mean rank
+        i = j + 1;
+    }
+    return r;
+}
+}  // namespace
+
+double spearman(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size() || a.size() < 2) return NAN;
+    std::vector<double> ra = ranks(a), rb = ranks(b);
+    double n = double(a.size()), ma = 0, mb = 0;
+    for (size_t i = 0; i < a.size(); ++i) ma += ra[i] / n, mb += rb[i] / n;
+    double sab = 0, saa = 0, sbb = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        sab += (ra[i] - ma) * (rb[i] - mb);
+        saa += (ra[i] - ma) * (ra[i] - ma);
+        sbb += (rb[i] - mb) * (rb[i] - mb);
+    }
+    return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : NAN;
 }
 
 }  // namespace gi::matrix

@@ -23,7 +23,8 @@
 // Paths are relative to the spec's folder (or absolute); "" or "default" is the built-in default
 // preset. A cell's "technique" "*" stands for every registered technique, so a new technique
 // joins a matrix with no change here. "sweep" takes lists or {from, to, step} ranges and expands
-// to their product. "paperScores" ({scene label: number}) puts a published score beside the cell.
+// to their product. "scenes" ([labels]) limits a variant to some scenes. "paperScores" ({scene
+// label: number}) puts a published score beside the cell, and the report ranks against it.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -54,6 +55,7 @@ struct VariantSpec {
     std::vector<std::string> set;   // key=value overrides
     std::vector<Sweep> sweeps;      // expanded to their product
     std::map<std::string, double> paperScores;  // scene label -> published score
+    std::vector<std::string> scenes;            // the scene labels it runs on; empty: every scene
 };
 
 struct MatrixSpec {
@@ -83,6 +85,11 @@ struct Cell {
 MatrixSpec specFromJson(const nlohmann::json& j, const std::string& context,
                         const std::filesystem::path& folder = {});
 MatrixSpec loadSpec(const std::filesystem::path& path);
+
+// One cell: its id hashes the scene (input, camera, overrides), the technique, `set` and the
+// spec's image size, frames and samples, so equal renders share a folder and --resume finds them.
+Cell makeCell(const MatrixSpec& spec, size_t sceneIndex, const std::string& technique, const std::string& label,
+              const std::vector<std::string>& set);
 
 // Every cell of the spec, scene by scene, in spec order. Refused past kMaxCells.
 constexpr size_t kMaxCells = 100000;
@@ -132,6 +139,10 @@ nlohmann::json resultsJSON(const std::vector<CellResult>& results);
 // Indices of the Pareto front among `results` (ok cells only): no other cell has a higher SSIM
 // for no more ms (ties: the cheaper, then the first). Sorted by ms.
 std::vector<size_t> paretoFront(const std::vector<CellResult>& results);
+
+// Spearman's rank correlation of two lists (ties share their mean rank); NaN for fewer than two
+// values or a constant list. The report ranks the cells' SSIM against a paper's scores with it.
+double spearman(const std::vector<double>& a, const std::vector<double>& b);
 
 // A name safe as a folder: letters, digits, '-', '_' and '.', the rest as '_'.
 std::string slug(const std::string& text);

@@ -175,7 +175,7 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
                     " - GI Workbench matrix</title><style>" + kStyle + "</style></head>\n<body>\n";
     h += "<h1>" + escape(title) + "</h1>\n<p>" + std::to_string(results.size()) + " cells, " + std::to_string(okCount) + " rendered, " +
          std::to_string(results.size() - okCount) + " failed. SSIM is against each scene's path-traced reference (tone-mapped); " +
-         "ms is the last frame's passes added up. Renderer: ";
+         "ms is the median frame after the first, its passes added up. Renderer: ";
     for (const std::string& r : renderers) h += escape(r) + "; ";
     h += "made by gi-matrix. Click a column to sort.</p>\n";
 
@@ -213,7 +213,14 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
         h += "<div class=\"front-list\"><b>Pareto front</b><ol>";
         for (size_t i : front)
             h += "<li>" + escape(cells[i].label) + ": SSIM " + fmt("%.4f", cells[i].ssim) + ", " + fmt("%.1f", cells[i].msTotal) + " ms</li>";
-        h += "</ol></div></div>\n<table class=\"cells\"><thead><tr><th>image</th><th>heat</th><th>leak</th><th>technique</th>"
+        h += "</ol>";
+        std::vector<double> ours, theirs;
+        for (const CellResult& c : cells)
+            if (c.ok() && c.paperScore) ours.push_back(c.ssim), theirs.push_back(*c.paperScore);
+        if (ours.size() >= 3)
+            h += "<p class=\"rank\">Rank correlation (Spearman) of our SSIM with the paper's score over " + std::to_string(ours.size()) +
+                 " cells: <b>" + fmt("%.2f", spearman(ours, theirs)) + "</b> (1: the same order, 0: unrelated, -1: reversed)</p>";
+        h += "</div></div>\n<table class=\"cells\"><thead><tr><th>image</th><th>heat</th><th>leak</th><th>technique</th>"
              "<th>label</th><th>settings</th><th data-type=\"num\">SSIM</th><th data-type=\"num\">score</th>";
         if (paper) h += "<th data-type=\"num\">paper score</th>";
         h += "<th data-type=\"num\">RMSE</th><th data-type=\"num\">PSNR</th><th data-type=\"num\">brightness</th>"
