@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <set>
 
@@ -84,6 +85,30 @@ TEST(MatrixSpec, EveryTechniqueJoinsThroughTheWildcard) {
     for (size_t i = 0; i < n; ++i) names.insert(cells[i].technique);
     EXPECT_EQ(names.size(), n) << "each registered technique once";
     EXPECT_EQ(cells[n].label, "ao " + cells[n].technique);
+}
+
+TEST(MatrixSpec, AVariantCanBeLimitedToSomeScenes) {
+    json j = smallSpec();
+    j["cells"] = json::parse(R"([{"technique": "none"}, {"technique": "lpv", "scenes": ["second"]}])");
+    std::vector<Cell> cells = expandCells(specFromJson(j, "spec.json"));
+    ASSERT_EQ(cells.size(), 3u);
+    EXPECT_EQ(cells[0].sceneLabel, "default");
+    EXPECT_EQ(cells[1].sceneLabel, "second");
+    EXPECT_EQ(cells[2].technique, "lpv");
+    EXPECT_EQ(cells[2].sceneLabel, "second");
+    j["cells"][1]["scenes"] = {"third"};
+    EXPECT_NE(errorOf(j).find("cells[1].scenes: no scene is labelled \"third\""), std::string::npos) << errorOf(j);
+}
+
+TEST(MatrixSpec, SpearmanRanksLikeTheTextbook) {
+    EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {10, 20, 30, 40}), 1.0);
+    EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {4, 3, 2, 1}), -1.0);
+    // Monotone but not linear: still 1.
+    EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {1, 8, 27, 1000}), 1.0);
+    // Ties share their mean rank: ranks (1.5, 1.5, 3) against (1, 2, 3) give 0.866.
+    EXPECT_NEAR(spearman({5, 5, 7}, {1, 2, 3}), std::sqrt(3.0) / 2.0, 1e-12);
+    EXPECT_TRUE(std::isnan(spearman({1}, {2})));
+    EXPECT_TRUE(std::isnan(spearman({1, 1, 1}, {1, 2, 3})));
 }
 
 TEST(MatrixSpec, CellIdsAreStableAndFollowWhatTheRenderDependsOn) {
