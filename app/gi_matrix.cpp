@@ -20,12 +20,7 @@ using nlohmann::json;
 
 namespace {
 
-// gi-render beside this executable (the build tree and an install keep them together).
-fs::path defaultRenderer() {
-    std::error_code ec;
-    fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::path("gi-render") : self.parent_path() / "gi-render";
-}
+fs::path defaultRenderer() { return gi::matrix::siblingExecutable("gi-render"); }
 
 std::string titleOf(const fs::path& dir) {
     std::error_code ec;

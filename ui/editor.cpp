@@ -252,7 +252,8 @@ void Editor::frame(int width, int height, float dt, float workMs) {
     // A script acts from the second frame on, one action per frame, each once the GI shows what
     // the last one asked for, as a user would.
     const bool waitingForReference = mScriptNext < mScript.size() && mScript[mScriptNext] == "wait-reference" && !mReference.settled();
-    if (mFrames++ > 0 && mScriptNext < mScript.size() && giCaughtUp() && !waitingForReference) {
+    const bool waitingForTune = mScriptNext < mScript.size() && mScript[mScriptNext] == "tune-wait" && mTune && !mTune->done();
+    if (mFrames++ > 0 && mScriptNext < mScript.size() && giCaughtUp() && !waitingForReference && !waitingForTune) {
         runAction(mScript[mScriptNext++]);
         recordEdit(false);
     }
@@ -435,6 +436,26 @@ void Editor::runAction(const std::string& action) {
         else throw Error("script: compare takes live, a or split: '" + arg + "'");
     } else if (verb == "diff-file") {
         diffWithFile(arg);
+    } else if (verb == "tune") {
+        // tune TECHNIQUE BUDGET_MS RENDERS [WxH]: start the auto-tune; tune-wait runs once it ends.
+        char technique[64] = {0};
+        double budget = 0.0;
+        int renders = 0, w = mTuneRequest.width, h = mTuneRequest.height;
+        int n = std::sscanf(arg.c_str(), "%63s %lf %d %dx%d", technique, &budget, &renders, &w, &h);
+        if (n < 3 || budget <= 0.0 || renders < 1) throw Error("script: tune takes TECHNIQUE BUDGET_MS RENDERS [WxH]: '" + arg + "'");
+        mTuneRequest.technique = technique;
+        mTuneRequest.budgetMs = budget;
+        mTuneRequest.renders = size_t(renders);
+        mTuneRequest.width = w;
+        mTuneRequest.height = h;
+        mSectionForce["auto-tune"] = true;
+        startTune();
+    } else if (verb == "tune-wait") {
+        // Runs once the search has ended (see frame()).
+    } else if (verb == "tune-cancel") {
+        if (mTune) mTune->cancel();
+    } else if (verb == "tune-apply") {
+        applyTune();
     } else if (verb == "help") {
         mShowHelp = !mShowHelp;
     } else if (verb == "wait" || verb == "wait-reference") {  // wait-reference ran once the reference settled
@@ -493,6 +514,7 @@ json Editor::state() const {
             {"viewport", {mViewport.x, mViewport.width, mViewport.height}},
             {"giSettled", giSettled()},
             {"compare", compareState()},
+            {"tune", tuneState()},
             {"openSections", openSections()},
             {"fieldsShown", mFieldsShown},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};
@@ -723,6 +745,7 @@ void Editor::drawPanels() {
         if (section("scene", true)) cost |= scenePanel();
         if (section("presets", true)) presetsPanel();
         if (section("compare A/B", bool(mSnapshotA))) comparePanel();
+        if (section("auto-tune", bool(mTune))) tunePanel();
         bool lightsOpen = section("lights", false, mOpenLights);
         if (mScrollToLights > 0) {
             ImGui::SetScrollHereY(0.0f);

@@ -11,6 +11,7 @@
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
 #include "gi/scene/scene.h"
+#include "ui/tune_job.h"
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
 #include "ui/gi_thread.h"
@@ -295,6 +296,18 @@ private:
     std::optional<std::vector<PresetChange>> mFileDiff;
     std::string mDiffError;
     void comparePanel();
+    // Auto-tune (ui/panels/tune_panel.cpp, ui/tune_job.h): the search runs in gi-render processes
+    // on a worker thread; the panel shows its progress, best image and path, and applies the winner.
+    std::unique_ptr<TuneJob> mTune;
+    TuneRequest mTuneRequest;
+    TuneSnapshot mTuneSnapshot;        // the panel's copy, taken each frame it is drawn
+    gl::Texture mTuneImage;            // the best render's image (GI context)
+    std::filesystem::path mTuneImagePath;
+    std::string mTuneError;
+    void tunePanel();
+    void startTune();                  // throws gi::Error for a technique with nothing to tune
+    void applyTune();                  // the best within the budget, as an undoable edit
+    json tuneState() const;
     void holdSnapshot();            // context held, the image up to date
     bool comparing() const { return mSnapshotA && mCompareView != CompareView::Live; }
     // F and the Flip button: A, or back to the live image.

@@ -102,6 +102,12 @@ RunSummary runCells(const MatrixSpec& spec, const std::vector<Cell>& cells, cons
     return s;
 }
 
+fs::path siblingExecutable(const std::string& name) {
+    std::error_code ec;
+    fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path(name) : self.parent_path() / name;
+}
+
 std::string formatDuration(double seconds) {
     char buf[32];
     long t = std::lround(std::max(seconds, 0.0));

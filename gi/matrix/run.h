@@ -39,6 +39,10 @@ struct RunSummary {
 };
 RunSummary runCells(const MatrixSpec& spec, const std::vector<Cell>& cells, const RunOptions& options);
 
+// An executable beside this process's own (gi-render beside gi-matrix or gi-editor: the build
+// tree and an install keep them together); the bare name when that cannot be told.
+std::filesystem::path siblingExecutable(const std::string& name);
+
 // "1m05s", "42s", "2h03m".
 std::string formatDuration(double seconds);
 
