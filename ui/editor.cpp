@@ -450,6 +450,17 @@ void Editor::runAction(const std::string& action) {
         mTuneRequest.height = h;
         mSectionForce["auto-tune"] = true;
         startTune();
+    } else if (verb == "matrix-load") {
+        loadMatrix(arg);
+        mSectionForce["compare A/B"] = true;
+    } else if (verb == "matrix-pick") {
+        size_t a = 0, b = 0;
+        if (std::sscanf(arg.c_str(), "%zu %zu", &a, &b) != 2 || a >= mMatrixCells.size() || b >= mMatrixCells.size())
+            throw Error("script: matrix-pick takes two cell indices below " + std::to_string(mMatrixCells.size()) + ": '" + arg + "'");
+        mMatrixPick = {a, b};
+    } else if (verb == "matrix-view") {
+        if (arg != "side" && arg != "split") throw Error("script: matrix-view takes side or split: '" + arg + "'");
+        mMatrixView = arg == "side" ? 0 : 1;
     } else if (verb == "tune-wait") {
         // Runs once the search has ended (see frame()).
     } else if (verb == "tune-cancel") {
@@ -515,6 +526,7 @@ json Editor::state() const {
             {"giSettled", giSettled()},
             {"compare", compareState()},
             {"tune", tuneState()},
+            {"matrix", matrixState()},
             {"openSections", openSections()},
             {"fieldsShown", mFieldsShown},
             {"preset", json::parse(presetToSavedJson(mPreset).dump())}};

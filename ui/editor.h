@@ -12,6 +12,8 @@
 #include "gi/render/renderer.h"
 #include "gi/scene/scene.h"
 #include "ui/tune_job.h"
+
+#include <array>
 #include "ui/buffer_previewer.h"
 #include "ui/fly_camera.h"
 #include "ui/gi_thread.h"
@@ -308,6 +310,18 @@ private:
     void startTune();                  // throws gi::Error for a technique with nothing to tune
     void applyTune();                  // the best within the budget, as an undoable edit
     json tuneState() const;
+    // The matrix cells compared in the compare section (ui/panels/matrix_panel.cpp).
+    std::string mMatrixDir;
+    std::vector<matrix::CellResult> mMatrixCells;
+    std::array<size_t, 2> mMatrixPick{0, 0};
+    std::array<gl::Texture, 2> mMatrixImages;       // GI context
+    std::array<std::string, 2> mMatrixShown;        // the image files they hold
+    int mMatrixView = 0;                            // 0: side by side, 1: split
+    float mMatrixSplit = 0.5f;
+    std::string mMatrixError;
+    void loadMatrix(const std::filesystem::path& dir);  // throws gi::Error naming the folder
+    void matrixComparePanel();
+    json matrixState() const;
     void holdSnapshot();            // context held, the image up to date
     bool comparing() const { return mSnapshotA && mCompareView != CompareView::Live; }
     // F and the Flip button: A, or back to the live image.

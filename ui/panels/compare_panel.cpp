@@ -151,6 +151,9 @@ void Editor::comparePanel() {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("list the settings that differ between this preset file and the editor's");
     if (!mDiffError.empty()) wrappedText(kErrorColor, mDiffError);
     else if (mFileDiff) changeTable("file", "file", "editor", *mFileDiff, 24);
+    ImGui::Separator();
+    ImGui::TextUnformatted("matrix cells");
+    matrixComparePanel();
 }
 
 json Editor::compareState() const {
