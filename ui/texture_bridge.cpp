@@ -1,8 +1,11 @@
 #include "ui/texture_bridge.h"
 
+#include "gi/render/image_io.h"
 #include "gi/util/error.h"
 
 #include <epoxy/gl.h>
+
+#include <algorithm>
 
 namespace gi::ui {
 
@@ -101,6 +104,17 @@ TextureBridge& textureBridge() {
 }
 
 void setTextureBridge(TextureBridge* bridge) { gBridge = bridge; }
+
+gl::Texture imageFileTexture(const std::filesystem::path& path) {
+    ImageRGBA8 img = readImage8(path);
+    std::vector<uint8_t> rows(img.rgba.size());
+    const size_t stride = size_t(img.width) * 4;
+    for (int y = 0; y < img.height; ++y)  // the file's top row last
+        std::copy_n(img.rgba.begin() + long(size_t(img.height - 1 - y) * stride), stride, rows.begin() + long(size_t(y) * stride));
+    gl::Texture t = gl::Texture::create2D(GL_RGBA8, img.width, img.height);
+    glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    return t;
+}
 
 void giImage(const gl::Texture& texture, ImVec2 size) {
     ImGui::Image(textureBridge().id(texture), size, ImVec2(0, 1), ImVec2(1, 0));

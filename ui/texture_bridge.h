@@ -6,6 +6,8 @@
 // draw data is pointed at its copies. While the GI thread renders, the last copies are shown.
 #pragma once
 
+#include <filesystem>
+
 #include "gi/gl/handle.h"
 
 #include <imgui.h>
@@ -57,5 +59,8 @@ TextureBridge& textureBridge();
 void setTextureBridge(TextureBridge* bridge);
 // ImGui::Image of a GI-context texture, rows bottom first as GL has them.
 void giImage(const gl::Texture& texture, ImVec2 size);
+// An image file (PNG, through OpenImageIO) as an RGBA8 texture of the GI context, rows in GL order
+// as giImage draws them. Throws gi::Error naming the file.
+gl::Texture imageFileTexture(const std::filesystem::path& path);
 
 }  // namespace gi::ui

@@ -363,6 +363,31 @@ json resultToJson(const CellResult& r) {
     return j;
 }
 
+CellResult resultOf(const Cell& cell, const std::string& status) {
+    CellResult r;
+    r.id = cell.id;
+    r.scene = cell.sceneLabel;
+    r.technique = cell.technique;
+    r.label = cell.label;
+    r.settings = cell.set;
+    r.paperScore = cell.paperScore;
+    r.status = status;
+    return r;
+}
+
+namespace {
+// The metrics' keys, as gi-render's stats.json and result.json both name them.
+void readMetrics(const json& m, CellResult& r) {
+    r.ssim = numberOr(m, "ssim");
+    r.score = numberOr(m, "score");
+    r.rmse = numberOr(m, "rmse");
+    r.psnr = numberOr(m, "psnr");
+    r.brightness = numberOr(m, "brightness");
+    r.leakFraction = numberOr(m, "leakFraction");
+    r.leakEnergy = numberOr(m, "leakEnergy");
+}
+}  // namespace
+
 CellResult resultFromJson(const json& j, const std::string& context) {
     if (!j.is_object()) throw Error(context + ": expected a JSON object");
     CellResult r;
@@ -381,13 +406,7 @@ CellResult resultFromJson(const json& j, const std::string& context) {
     } catch (const json::exception& e) {
         throw Error(context + ": " + e.what());
     }
-    r.ssim = numberOr(j, "ssim");
-    r.score = numberOr(j, "score");
-    r.rmse = numberOr(j, "rmse");
-    r.psnr = numberOr(j, "psnr");
-    r.brightness = numberOr(j, "brightness");
-    r.leakFraction = numberOr(j, "leakFraction");
-    r.leakEnergy = numberOr(j, "leakEnergy");
+    readMetrics(j, r);
     r.msTotal = numberOr(j, "msTotal");
     r.memoryBytes = numberOr(j, "memoryBytes");
     r.wallSeconds = numberOr(j, "wallSeconds");
@@ -404,22 +423,8 @@ CellResult resultFromStats(const Cell& cell, const fs::path& cellDir) {
         throw Error(statsPath.string() + ": invalid JSON at byte " + std::to_string(e.byte));
     }
     if (!stats.contains("metrics") || !stats["metrics"].is_object()) throw Error(statsPath.string() + ": no 'metrics' (was it scored?)");
-    const json& m = stats["metrics"];
-    CellResult r;
-    r.id = cell.id;
-    r.scene = cell.sceneLabel;
-    r.technique = cell.technique;
-    r.label = cell.label;
-    r.settings = cell.set;
-    r.paperScore = cell.paperScore;
-    r.status = "ok";
-    r.ssim = numberOr(m, "ssim");
-    r.score = numberOr(m, "score");
-    r.rmse = numberOr(m, "rmse");
-    r.psnr = numberOr(m, "psnr");
-    r.brightness = numberOr(m, "brightness");
-    r.leakFraction = numberOr(m, "leakFraction");
-    r.leakEnergy = numberOr(m, "leakEnergy");
+    CellResult r = resultOf(cell, "ok");
+    readMetrics(stats["metrics"], r);
     // The median frame after the first (gi-render's gpuMsMedian), else the last frame.
     r.msTotal = numberOr(stats, "gpuMsMedian", numberOr(stats, "gpuMsTotal"));
     r.memoryBytes = numberOr(stats, "memoryBytes");

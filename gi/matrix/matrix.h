@@ -122,6 +122,10 @@ struct CellResult {
     bool ok() const { return status == "ok"; }
 };
 
+// A result that names the cell (id, scene, technique, label, settings, paper score) and has
+// `status`, its figures still zero.
+CellResult resultOf(const Cell& cell, const std::string& status);
+
 nlohmann::json resultToJson(const CellResult& r);
 CellResult resultFromJson(const nlohmann::json& j, const std::string& context);
 

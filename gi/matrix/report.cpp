@@ -148,6 +148,20 @@ std::string paretoSVG(const std::vector<CellResult>& results) {
     }
     s += "<path class=\"front\" d=\"" + path + "\" fill=\"none\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>";
     std::vector<std::string> techniques = techniquesOf(results);
+    // Each technique's own front, thin in its colour.
+    for (size_t t = 0; t < techniques.size(); ++t) {
+        std::vector<CellResult> own;
+        for (size_t i : ok)
+            if (results[i].technique == techniques[t]) own.push_back(results[i]);
+        std::vector<size_t> f = paretoFront(own);
+        if (f.size() < 2) continue;
+        std::string line;
+        for (size_t k = 0; k < f.size(); ++k) {
+            line += (k ? " L" : "M") + fmt("%.1f", X(own[f[k]].msTotal)) + " " + fmt("%.1f", Y(own[f[k]].ssim));
+            if (k + 1 < f.size()) line += " L" + fmt("%.1f", X(own[f[k + 1]].msTotal)) + " " + fmt("%.1f", Y(own[f[k]].ssim));
+        }
+        s += "<path class=\"technique-front\" d=\"" + line + "\" fill=\"none\" stroke=\"" + colourOf(t) + "\" stroke-width=\"1.2\"/>";
+    }
     for (size_t i : ok) {
         const CellResult& r = results[i];
         size_t t = size_t(std::find(techniques.begin(), techniques.end(), r.technique) - techniques.begin());
@@ -209,11 +223,23 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
                 break;
             }
         h += "<figure>" + paretoSVG(cells) + "<figcaption>SSIM against ms; the Pareto front (no cell is better for less) is ringed" +
-             "</figcaption></figure>";
+             "; each technique's own front is the line in its colour</figcaption></figure>";
         h += "<div class=\"front-list\"><b>Pareto front</b><ol>";
         for (size_t i : front)
             h += "<li>" + escape(cells[i].label) + ": SSIM " + fmt("%.4f", cells[i].ssim) + ", " + fmt("%.1f", cells[i].msTotal) + " ms</li>";
         h += "</ol>";
+        // Each technique's own front, when it has more than one point.
+        for (const std::string& t : techniquesOf(cells)) {
+            std::vector<CellResult> own;
+            for (const CellResult& c : cells)
+                if (c.technique == t) own.push_back(c);
+            std::vector<size_t> f = paretoFront(own);
+            if (f.size() < 2) continue;
+            h += "<p class=\"technique-front\"><b>" + escape(t) + " front:</b> ";
+            for (size_t k = 0; k < f.size(); ++k)
+                h += (k ? "; " : "") + escape(own[f[k]].label) + " (" + fmt("%.4f", own[f[k]].ssim) + ", " + fmt("%.0f", own[f[k]].msTotal) + " ms)";
+            h += "</p>";
+        }
         std::vector<double> ours, theirs;
         for (const CellResult& c : cells)
             if (c.ok() && c.paperScore) ours.push_back(c.ssim), theirs.push_back(*c.paperScore);

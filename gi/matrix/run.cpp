@@ -42,20 +42,12 @@ CellResult runCell(const MatrixSpec& spec, const Cell& cell, const RunOptions& o
         try {
             r = resultFromStats(cell, folder);
         } catch (const Error& e) {
-            r.status = "failed";
+            r = resultOf(cell, "failed");
             r.error = e.what();
         }
     } else {
-        r.status = p.timedOut ? "timeout" : p.cancelled ? "cancelled" : "failed";
+        r = resultOf(cell, p.timedOut ? "timeout" : p.cancelled ? "cancelled" : "failed");
         r.error = failureText(p, log, spec.timeoutSeconds);
-    }
-    if (!r.ok()) {
-        r.id = cell.id;
-        r.scene = cell.sceneLabel;
-        r.technique = cell.technique;
-        r.label = cell.label;
-        r.settings = cell.set;
-        r.paperScore = cell.paperScore;
     }
     r.wallSeconds = p.seconds;
     r.folder = fs::relative(folder, options.outDir).generic_string();

@@ -3,7 +3,6 @@
 // ms, brightness, leak, memory) and the settings that differ between them.
 #include "ui/editor.h"
 
-#include "gi/render/image_io.h"
 #include "ui/panel_util.h"
 #include "ui/texture_bridge.h"
 
@@ -77,13 +76,7 @@ void Editor::matrixComparePanel() {
             mMatrixImages[side] = gl::Texture();
             if (c.ok() && fs::exists(image)) {
                 try {
-                    ImageRGBA8 img = readImage8(image);
-                    std::vector<uint8_t> rows(img.rgba.size());
-                    const size_t stride = size_t(img.width) * 4;
-                    for (int y = 0; y < img.height; ++y)  // bottom row first, as giImage draws
-                        std::copy_n(img.rgba.begin() + long(size_t(img.height - 1 - y) * stride), stride, rows.begin() + long(size_t(y) * stride));
-                    mMatrixImages[side] = gl::Texture::create2D(GL_RGBA8, img.width, img.height);
-                    glTextureSubImage2D(mMatrixImages[side].id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+                    mMatrixImages[side] = imageFileTexture(image);
                 } catch (const std::exception& e) {
                     mMatrixError = e.what();
                 }

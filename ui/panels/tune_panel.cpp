@@ -6,7 +6,6 @@
 #include "ui/editor.h"
 
 #include "gi/matrix/run.h"
-#include "gi/render/image_io.h"
 #include "ui/panel_util.h"
 #include "ui/texture_bridge.h"
 
@@ -125,13 +124,7 @@ void Editor::tunePanel() {
         // The best render's image, loaded into the GI context when it changes.
         if (mLive && s.bestImage != mTuneImagePath && fs::exists(s.bestImage)) {
             try {
-                ImageRGBA8 img = readImage8(s.bestImage);
-                std::vector<uint8_t> rows(img.rgba.size());
-                const size_t stride = size_t(img.width) * 4;
-                for (int y = 0; y < img.height; ++y)  // bottom row first, as giImage draws
-                    std::copy_n(img.rgba.begin() + long(size_t(img.height - 1 - y) * stride), stride, rows.begin() + long(size_t(y) * stride));
-                mTuneImage = gl::Texture::create2D(GL_RGBA8, img.width, img.height);
-                glTextureSubImage2D(mTuneImage.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+                mTuneImage = imageFileTexture(s.bestImage);
                 mTuneImagePath = s.bestImage;
             } catch (const std::exception& e) {
                 mTuneError = e.what();
