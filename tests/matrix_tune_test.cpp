@@ -146,7 +146,9 @@ TEST(MatrixTune, PatternSearchFindsTheModelsOptimumWithinBudgetAndBeatsTheGrid) 
     EXPECT_TRUE(t.best->withinBudget);
     EXPECT_LE(t.best->result.msTotal, 30.0);
     for (const TuneStep& s : t.steps) {
-        if (s.withinBudget) EXPECT_LE(s.result.ssim, t.best->result.ssim + 1e-12);
+        if (s.withinBudget) {
+            EXPECT_LE(s.result.ssim, t.best->result.ssim + 1e-12);
+        }
     }
 }
 
