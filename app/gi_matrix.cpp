@@ -76,6 +76,9 @@ int run(int argc, char** argv) {
     app.add_option("--frames", frames, "--tune: frames per render (the last one is timed)")->check(CLI::Range(1, 10000));
     app.add_option("--spp", spp, "--tune: samples per pixel of the reference")->check(CLI::Range(1, 65536));
     app.add_option("--camera", camera, "--tune: the glTF file's camera")->check(CLI::Range(-1, 1023));
+    double renderTimeout = 0.0;
+    app.add_option("--render-timeout", renderTimeout, "--tune: seconds one render may take (default: 60 + 10 x frames x budget)")
+        ->check(CLI::PositiveNumber);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -113,6 +116,10 @@ int run(int argc, char** argv) {
                   {"width", width}, {"height", height}, {"frames", frames}, {"spp", spp},
                   {"scenes", json::array({{{"input", fs::absolute(tuneInput).string()}, {"camera", camera}}})},
                   {"cells", json::array({{{"technique", technique}}})}};
+        // A render far over the budget cannot win: it is stopped after a minute plus ten times the
+        // budget per frame (the reference and the first frame included), and counts as over budget.
+        if (renderTimeout <= 0.0) renderTimeout = 60.0 + 10.0 * frames * budgetMs / 1000.0;
+        j["timeoutSeconds"] = renderTimeout;
         gi::matrix::MatrixSpec spec = gi::matrix::specFromJson(j, tuneInput);
         // The scene's own preset is where the search starts.
         gi::Preset preset = gi::presetForInput(fs::absolute(tuneInput), camera);

@@ -354,6 +354,7 @@ json resultToJson(const CellResult& r) {
               {"leakFraction", r.leakFraction},
               {"leakEnergy", r.leakEnergy},
               {"msTotal", r.msTotal},
+              {"msGI", r.msGI},
               {"passes", passes},
               {"memoryBytes", r.memoryBytes},
               {"renderer", r.renderer},
@@ -408,6 +409,11 @@ CellResult resultFromJson(const json& j, const std::string& context) {
     }
     readMetrics(j, r);
     r.msTotal = numberOr(j, "msTotal");
+    // Results written before msGI existed: the technique's passes from the pass list.
+    if (j.contains("msGI")) r.msGI = numberOr(j, "msGI");
+    else
+        for (const auto& [name, ms] : r.passMs)
+            if (name.rfind(r.technique + ".", 0) == 0) r.msGI += ms;
     r.memoryBytes = numberOr(j, "memoryBytes");
     r.wallSeconds = numberOr(j, "wallSeconds");
     if (j.contains("paperScore") && j["paperScore"].is_number()) r.paperScore = j["paperScore"].get<double>();
@@ -432,6 +438,8 @@ CellResult resultFromStats(const Cell& cell, const fs::path& cellDir) {
     if (stats.contains("passes") && stats["passes"].is_array())
         for (const json& p : stats["passes"])
             if (p.contains("name") && p["name"].is_string()) r.passMs.emplace_back(p["name"].get<std::string>(), numberOr(p, "gpuMs"));
+    for (const auto& [name, ms] : r.passMs)
+        if (name.rfind(cell.technique + ".", 0) == 0) r.msGI += ms;
     return r;
 }
 
@@ -472,14 +480,14 @@ std::string num(double v) {
 }  // namespace
 
 std::string resultsCSV(const std::vector<CellResult>& results) {
-    std::string s = "scene,technique,label,settings,status,ssim,score,rmse,psnr,brightness,leakFraction,leakEnergy,msTotal,passes,"
+    std::string s = "scene,technique,label,settings,status,ssim,score,rmse,psnr,brightness,leakFraction,leakEnergy,msTotal,msGI,passes,"
                     "memoryBytes,wallSeconds,paperScore,renderer,error,folder\n";
     for (const CellResult& r : results) {
         std::string passes;
         for (const auto& [name, ms] : r.passMs) passes += (passes.empty() ? "" : ";") + name + "=" + num(ms);
         std::vector<std::string> f = {r.scene, r.technique, r.label, joined(r.settings, ";"), r.status, num(r.ssim), num(r.score),
                                       num(r.rmse), num(r.psnr), num(r.brightness), num(r.leakFraction), num(r.leakEnergy),
-                                      num(r.msTotal), passes, num(r.memoryBytes), num(r.wallSeconds),
+                                      num(r.msTotal), num(r.msGI), passes, num(r.memoryBytes), num(r.wallSeconds),
                                       r.paperScore ? num(*r.paperScore) : "", r.renderer, r.error, r.folder};
         for (size_t i = 0; i < f.size(); ++i) s += (i ? "," : "") + csvField(f[i]);
         s += "\n";
@@ -493,14 +501,17 @@ json resultsJSON(const std::vector<CellResult>& results) {
     return a;
 }
 
-std::vector<size_t> paretoFront(const std::vector<CellResult>& results) {
+double costOf(const CellResult& r, CostAxis axis) { return axis == CostAxis::GI ? r.msGI : r.msTotal; }
+
+std::vector<size_t> paretoFront(const std::vector<CellResult>& results, CostAxis axis) {
     std::vector<size_t> ok;
     for (size_t i = 0; i < results.size(); ++i)
         if (results[i].ok()) ok.push_back(i);
     // Cheapest first (ties: the better picture, then the first); a cell joins the front when it
     // beats the best SSIM of every cheaper cell.
     std::stable_sort(ok.begin(), ok.end(), [&](size_t a, size_t b) {
-        if (results[a].msTotal != results[b].msTotal) return results[a].msTotal < results[b].msTotal;
+        double ca = costOf(results[a], axis), cb = costOf(results[b], axis);
+        if (ca != cb) return ca < cb;
         return results[a].ssim > results[b].ssim;
     });
     std::vector<size_t> front;

@@ -112,7 +112,8 @@ struct CellResult {
     std::string status;                  // "ok", "failed" or "timeout"
     std::string error;                   // the failure's last line of output
     double ssim = 0, score = 0, rmse = 0, psnr = 0, brightness = 0, leakFraction = 0, leakEnergy = 0;
-    double msTotal = 0;                  // the last frame's passes, added up
+    double msTotal = 0;                  // the frame: the median of the frames after the first, passes added up
+    double msGI = 0;                     // the technique's own passes (named "technique.*"), last frame
     std::vector<std::pair<std::string, double>> passMs;
     double memoryBytes = 0;
     std::string renderer;
@@ -140,9 +141,15 @@ std::vector<CellResult> collectResults(const std::filesystem::path& dir);
 std::string resultsCSV(const std::vector<CellResult>& results);
 nlohmann::json resultsJSON(const std::vector<CellResult>& results);
 
+// What a cell costs on a plot's x axis: the whole frame (what a budget is about), or the GI
+// technique's own passes (on llvmpipe a large scene's raster, shadows and G-buffer, can be most
+// of the frame and its noise hides the GI's cost).
+enum class CostAxis { Frame, GI };
+double costOf(const CellResult& r, CostAxis axis);
+
 // Indices of the Pareto front among `results` (ok cells only): no other cell has a higher SSIM
 // for no more ms (ties: the cheaper, then the first). Sorted by ms.
-std::vector<size_t> paretoFront(const std::vector<CellResult>& results);
+std::vector<size_t> paretoFront(const std::vector<CellResult>& results, CostAxis axis = CostAxis::Frame);
 
 // Spearman's rank correlation of two lists (ties share their mean rank); NaN for fewer than two
 // values or a constant list. The report ranks the cells' SSIM against a paper's scores with it.

@@ -94,7 +94,8 @@ window.addEventListener('load', () => {
 
 }  // namespace
 
-std::string paretoSVG(const std::vector<CellResult>& results) {
+std::string paretoSVG(const std::vector<CellResult>& results, CostAxis axis) {
+    auto cost = [axis](const CellResult& r) { return costOf(r, axis); };
     std::vector<size_t> ok;
     for (size_t i = 0; i < results.size(); ++i)
         if (results[i].ok()) ok.push_back(i);
@@ -105,8 +106,8 @@ std::string paretoSVG(const std::vector<CellResult>& results) {
     if (ok.empty()) return s + "<text x=\"20\" y=\"40\">no cell finished</text></svg>";
     double msMin = INFINITY, msMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
     for (size_t i : ok) {
-        msMin = std::min(msMin, std::max(results[i].msTotal, 1e-3));
-        msMax = std::max(msMax, std::max(results[i].msTotal, 1e-3));
+        msMin = std::min(msMin, std::max(cost(results[i]), 1e-3));
+        msMax = std::max(msMax, std::max(cost(results[i]), 1e-3));
         yMin = std::min(yMin, results[i].ssim);
         yMax = std::max(yMax, results[i].ssim);
     }
@@ -134,16 +135,17 @@ std::string paretoSVG(const std::vector<CellResult>& results) {
         s += "<text x=\"" + fmt("%.1f", X(ms)) + "\" y=\"" + fmt("%.1f", H - bottom + 14) + "\" text-anchor=\"middle\">" +
              fmt(ms < 10 ? "%.2f" : "%.0f", ms) + "</text>";
     }
-    s += "<text x=\"" + fmt("%.1f", (left + W - right) / 2) + "\" y=\"" + fmt("%.1f", H - 6) + "\" text-anchor=\"middle\">ms per frame" +
+    s += "<text x=\"" + fmt("%.1f", (left + W - right) / 2) + "\" y=\"" + fmt("%.1f", H - 6) + "\" text-anchor=\"middle\">" +
+         std::string(axis == CostAxis::GI ? "ms of the GI passes" : "ms per frame") +
          std::string(logX ? " (log scale)" : "") + "</text>";
     s += "<text transform=\"translate(12 " + fmt("%.1f", (top + H - bottom) / 2) + ") rotate(-90)\" text-anchor=\"middle\">SSIM</text>";
     // The front as a staircase: from each front cell, right at its SSIM to the next one's ms.
-    std::vector<size_t> front = paretoFront(results);
+    std::vector<size_t> front = paretoFront(results, axis);
     std::string path;
     for (size_t k = 0; k < front.size(); ++k) {
         const CellResult& r = results[front[k]];
-        path += (k ? " L" : "M") + fmt("%.1f", X(r.msTotal)) + " " + fmt("%.1f", Y(r.ssim));
-        double nextMs = k + 1 < front.size() ? results[front[k + 1]].msTotal : msMax;
+        path += (k ? " L" : "M") + fmt("%.1f", X(cost(r))) + " " + fmt("%.1f", Y(r.ssim));
+        double nextMs = k + 1 < front.size() ? cost(results[front[k + 1]]) : msMax;
         path += " L" + fmt("%.1f", X(nextMs)) + " " + fmt("%.1f", Y(r.ssim));
     }
     s += "<path class=\"front\" d=\"" + path + "\" fill=\"none\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>";
@@ -153,12 +155,12 @@ std::string paretoSVG(const std::vector<CellResult>& results) {
         std::vector<CellResult> own;
         for (size_t i : ok)
             if (results[i].technique == techniques[t]) own.push_back(results[i]);
-        std::vector<size_t> f = paretoFront(own);
+        std::vector<size_t> f = paretoFront(own, axis);
         if (f.size() < 2) continue;
         std::string line;
         for (size_t k = 0; k < f.size(); ++k) {
-            line += (k ? " L" : "M") + fmt("%.1f", X(own[f[k]].msTotal)) + " " + fmt("%.1f", Y(own[f[k]].ssim));
-            if (k + 1 < f.size()) line += " L" + fmt("%.1f", X(own[f[k + 1]].msTotal)) + " " + fmt("%.1f", Y(own[f[k]].ssim));
+            line += (k ? " L" : "M") + fmt("%.1f", X(cost(own[f[k]]))) + " " + fmt("%.1f", Y(own[f[k]].ssim));
+            if (k + 1 < f.size()) line += " L" + fmt("%.1f", X(cost(own[f[k + 1]]))) + " " + fmt("%.1f", Y(own[f[k]].ssim));
         }
         s += "<path class=\"technique-front\" d=\"" + line + "\" fill=\"none\" stroke=\"" + colourOf(t) + "\" stroke-width=\"1.2\"/>";
     }
@@ -166,9 +168,9 @@ std::string paretoSVG(const std::vector<CellResult>& results) {
         const CellResult& r = results[i];
         size_t t = size_t(std::find(techniques.begin(), techniques.end(), r.technique) - techniques.begin());
         bool onFront = std::find(front.begin(), front.end(), i) != front.end();
-        s += "<circle cx=\"" + fmt("%.1f", X(r.msTotal)) + "\" cy=\"" + fmt("%.1f", Y(r.ssim)) + "\" r=\"" + (onFront ? "5" : "3.5") +
+        s += "<circle cx=\"" + fmt("%.1f", X(cost(r))) + "\" cy=\"" + fmt("%.1f", Y(r.ssim)) + "\" r=\"" + (onFront ? "5" : "3.5") +
              "\" fill=\"" + colourOf(t) + "\"" + (onFront ? " stroke=\"black\" stroke-width=\"1.5\"" : " fill-opacity=\"0.75\"") +
-             "><title>" + escape(r.label) + ": SSIM " + fmt("%.4f", r.ssim) + ", " + fmt("%.1f", r.msTotal) + " ms</title></circle>";
+             "><title>" + escape(r.label) + ": SSIM " + fmt("%.4f", r.ssim) + ", " + fmt("%.1f", cost(r)) + " ms</title></circle>";
     }
     for (size_t t = 0; t < techniques.size(); ++t) {
         double y = top + 6 + 14.0 * double(t);
@@ -222,7 +224,9 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
                      "<figcaption>path-traced reference</figcaption></figure>";
                 break;
             }
-        h += "<figure>" + paretoSVG(cells) + "<figcaption>SSIM against ms; the Pareto front (no cell is better for less) is ringed" +
+        h += "<figure>" + paretoSVG(cells, CostAxis::GI) + "<figcaption>SSIM against the GI passes' own ms (the technique's passes)" +
+             "</figcaption></figure>";
+        h += "<figure>" + paretoSVG(cells) + "<figcaption>SSIM against the frame's ms; the Pareto front (no cell is better for less) is ringed" +
              "; each technique's own front is the line in its colour</figcaption></figure>";
         h += "<div class=\"front-list\"><b>Pareto front</b><ol>";
         for (size_t i : front)
@@ -250,7 +254,7 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
              "<th>label</th><th>settings</th><th data-type=\"num\">SSIM</th><th data-type=\"num\">score</th>";
         if (paper) h += "<th data-type=\"num\">paper score</th>";
         h += "<th data-type=\"num\">RMSE</th><th data-type=\"num\">PSNR</th><th data-type=\"num\">brightness</th>"
-             "<th data-type=\"num\">leak</th><th data-type=\"num\">ms</th><th>passes</th><th data-type=\"num\">MiB</th>"
+             "<th data-type=\"num\">leak</th><th data-type=\"num\">ms</th><th data-type=\"num\">GI ms</th><th>passes</th><th data-type=\"num\">MiB</th>"
              "<th data-type=\"num\">wall s</th></tr></thead><tbody>\n";
         for (size_t i = 0; i < cells.size(); ++i) {
             const CellResult& c = cells[i];
@@ -280,7 +284,7 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
             h += numCell(c.ssim, "%.4f") + numCell(c.score, "%.3g");
             if (paper) h += c.paperScore ? "<td data-v=\"" + fmt("%.9g", *c.paperScore) + "\">" + fmt("%.3f", *c.paperScore) + "</td>" : "<td data-v=\"\"></td>";
             h += numCell(c.rmse, "%.4f") + numCell(c.psnr, "%.2f") + numCell(c.brightness, "%.3f") + numCell(c.leakFraction, "%.4f") +
-                 numCell(c.msTotal, "%.1f", "ms");
+                 numCell(c.msTotal, "%.1f", "ms") + numCell(c.msGI, "%.1f");
             // The passes folded, the costliest named on the fold.
             std::string passes;
             if (!c.passMs.empty()) {

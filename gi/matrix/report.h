@@ -17,7 +17,7 @@ std::string reportHTML(const std::string& title, const std::vector<CellResult>& 
 
 // The SVG plot of one scene's ok cells: SSIM against ms, one colour per technique, the front
 // joined by a line. Log-scaled ms when the cells span more than 20x.
-std::string paretoSVG(const std::vector<CellResult>& results);
+std::string paretoSVG(const std::vector<CellResult>& results, CostAxis axis = CostAxis::Frame);
 
 // Writes results.csv, results.json and index.html into `dir` (atomically each).
 void writeResults(const std::filesystem::path& dir, const std::string& title, const std::vector<CellResult>& results);
