@@ -104,16 +104,20 @@ std::string paretoSVG(const std::vector<CellResult>& results, CostAxis axis) {
                     fmt("%.0f", H) + "\" viewBox=\"0 0 " + fmt("%.0f", W) + " " + fmt("%.0f", H) + "\">";
     s += "<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"white\"/>";
     if (ok.empty()) return s + "<text x=\"20\" y=\"40\">no cell finished</text></svg>";
+    // The range of the positive costs; a cell that costs nothing (technique none's GI) sits at
+    // the left edge.
     double msMin = INFINITY, msMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
+    for (size_t i : ok)
+        if (cost(results[i]) > 0.0) msMin = std::min(msMin, cost(results[i])), msMax = std::max(msMax, cost(results[i]));
+    if (!std::isfinite(msMin)) msMin = msMax = 1.0;
     for (size_t i : ok) {
-        msMin = std::min(msMin, std::max(cost(results[i]), 1e-3));
-        msMax = std::max(msMax, std::max(cost(results[i]), 1e-3));
         yMin = std::min(yMin, results[i].ssim);
         yMax = std::max(yMax, results[i].ssim);
     }
     bool logX = msMax / msMin > 20.0;
-    auto xf = [&](double ms) { return logX ? std::log10(std::max(ms, 1e-3)) : ms; };
+    auto xf = [&](double ms) { return logX ? std::log10(std::max(ms, msMin)) : std::max(ms, 0.0); };
     double x0 = xf(msMin), x1 = xf(msMax);
+    if (!logX && std::any_of(ok.begin(), ok.end(), [&](size_t i) { return cost(results[i]) <= 0.0; })) x0 = 0.0;
     if (x1 - x0 < 1e-9) x0 -= 0.5, x1 += 0.5;
     double padX = 0.05 * (x1 - x0);
     x0 -= padX, x1 += padX;
