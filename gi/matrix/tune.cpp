@@ -48,8 +48,9 @@ std::vector<TuneParameter> tuneSpace(const std::string& technique, const json& b
         TuneParameter p;
         p.key = s.key;
         json current = valueAt(base, s.key);
-        if (current.is_null() || current.type() != s.defaultValue.type()) current = s.defaultValue;
-        if (current.is_number() != s.defaultValue.is_number()) current = s.defaultValue;
+        // Numbers of any JSON kind (integer or float) count as the same type.
+        bool sameKind = current.is_number() ? s.defaultValue.is_number() : current.type() == s.defaultValue.type();
+        if (current.is_null() || !sameKind) current = s.defaultValue;
         if (s.type == "bool") {
             p.values = {"false", "true"};
             p.start = current.get<bool>() ? 1 : 0;
@@ -57,7 +58,7 @@ std::vector<TuneParameter> tuneSpace(const std::string& technique, const json& b
         } else if (s.type == "enum") {
             p.values = s.choices;
             auto it = std::find(p.values.begin(), p.values.end(), current.get<std::string>());
-            p.start = size_t(it - p.values.begin());
+            p.start = it == p.values.end() ? 0 : size_t(it - p.values.begin());
             p.ordered = false;
         } else if (s.type == "int" || s.type == "float") {
             bool integer = s.type == "int";
