@@ -47,11 +47,20 @@ TEST(MatrixTune, SpaceIsTheArtistSettingsAroundTheScenesValues) {
     // Around the preset's value.
     Preset p = builtinDefaultPreset();
     applySetting(p, "lpv.gridResolution=16");
+    applySetting(p, "lpv.intensity=2");
+    applySetting(p, "lpv.occlusion=false");
     std::vector<TuneParameter> fromPreset = tuneSpace("lpv", presetToJson(p));
     grid = find(fromPreset, "lpv.gridResolution");
     ASSERT_NE(grid, nullptr);
     EXPECT_EQ(grid->values[grid->start], "16");
     EXPECT_EQ(grid->values.front(), "4");
+    const TuneParameter* scaled = find(fromPreset, "lpv.intensity");
+    ASSERT_NE(scaled, nullptr);
+    EXPECT_EQ(scaled->values[scaled->start], "2") << "a float from the preset";
+    EXPECT_EQ(scaled->values.back(), "8");
+    occlusion = find(fromPreset, "lpv.occlusion");
+    ASSERT_NE(occlusion, nullptr);
+    EXPECT_EQ(occlusion->values[occlusion->start], "false");
 
     std::vector<TuneParameter> vct = tuneSpace("vct");
     const TuneParameter* mode = find(vct, "vct.mode");
