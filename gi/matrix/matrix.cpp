@@ -2,6 +2,7 @@
 
 #include "gi/preset/preset.h"
 #include "gi/util/error.h"
+#include "gi/util/hash.h"
 #include "gi/util/paths.h"
 
 #include <algorithm>
@@ -105,15 +106,6 @@ std::vector<std::string> sweepValues(const json& v, const std::string& where) {
     }
     if (out.empty()) throw Error(where + ": no values");
     return out;
-}
-
-uint64_t fnv1a(const std::string& s) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return h;
 }
 
 std::string hex(uint64_t v, int digits) {
@@ -258,7 +250,9 @@ Cell makeCell(const MatrixSpec& spec, size_t sceneIndex, const std::string& tech
     std::string key = scene.input + "\n" + std::to_string(scene.camera) + "\n" + joined(scene.set, "\n") + "\n" + technique + "\n" +
                       joined(set, "\n") + "\n" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "/" +
                       std::to_string(spec.frames) + "/" + std::to_string(spec.spp);
-    c.id = slug(label).substr(0, 40) + "-" + hex(fnv1a(key), 12);
+    Hasher hash;
+    hash.bytes(key.data(), key.size());
+    c.id = slug(label).substr(0, 40) + "-" + hex(hash.result(), 12);
     return c;
 }
 

@@ -4,6 +4,7 @@
 #include "gi/envmap/envmap_image.h"
 #include "gi/preset/reflect.h"
 #include "gi/util/error.h"
+#include "gi/util/hash.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -20,31 +21,6 @@
 namespace gi {
 
 namespace {
-
-// FNV-1a, 64 bit: simple, stable across runs and machines, fast enough for Sponza's 100 MB.
-class Hasher {
-public:
-    void bytes(const void* data, size_t n) {
-        const auto* p = static_cast<const uint8_t*>(data);
-        for (size_t i = 0; i < n; ++i) {
-            mHash ^= p[i];
-            mHash *= 0x100000001b3ULL;
-        }
-    }
-    template <class T>
-    void value(const T& v) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        bytes(&v, sizeof(T));
-    }
-    void text(const std::string& s) {
-        value(s.size());
-        bytes(s.data(), s.size());
-    }
-    uint64_t result() const { return mHash; }
-
-private:
-    uint64_t mHash = 0xcbf29ce484222325ULL;
-};
 
 // What identifies an environment map's contents without reading it: nothing more than the name
 // for a built-in (made by code), the device, inode, size and modification time of the file (or
