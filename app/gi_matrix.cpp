@@ -10,6 +10,8 @@
 #include "gi/util/paths.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <set>
 
 #include <cstdio>
 #include <iostream>
@@ -139,8 +141,8 @@ int run(int argc, char** argv) {
             std::string figures = s.result.ok() ? "SSIM " + std::to_string(s.result.ssim).substr(0, 6) + ", " +
                                                       std::to_string(s.result.msTotal).substr(0, 7) + " ms" + (s.withinBudget ? "" : " (over budget)")
                                                 : s.result.status + ": " + s.result.error;
-            std::fprintf(stderr, "gi-matrix: tune [%zu/%zu] %s: %s%s\n", r.renders, renders, s.change.c_str(), figures.c_str(),
-                         s.best ? "  <- best" : "");
+            std::fprintf(stderr, "gi-matrix: tune [%zu/%zu] %s: %s%s%s\n", r.renders, renders, s.change.c_str(), figures.c_str(),
+                         s.reused ? " (reused)" : "", s.best ? "  <- best" : "");
         };
         fs::create_directories(outDir);
         gi::matrix::TuneReport report = grid ? gi::matrix::tuneGrid(spec, options) : gi::matrix::tunePatternSearch(spec, options);
@@ -159,8 +161,8 @@ int run(int argc, char** argv) {
         gi::savePreset(preset, tuned);
         std::string settings;
         for (const std::string& a : report.best->settings) settings += " " + a;
-        std::fprintf(stderr, "gi-matrix: %s in %zu renders: SSIM %.4f at %.1f ms (budget %g ms) with%s; preset: %s\n",
-                     report.method.c_str(), report.renders, report.best->result.ssim, report.best->result.msTotal, budgetMs,
+        std::fprintf(stderr, "gi-matrix: %s in %zu renders (%zu reused): SSIM %.4f at %.1f ms (budget %g ms) with%s; preset: %s\n",
+                     report.method.c_str(), report.renders, report.reused, report.best->result.ssim, report.best->result.msTotal, budgetMs,
                      settings.empty() ? " the defaults" : settings.c_str(), tuned.c_str());
         return 0;
     }
@@ -193,8 +195,16 @@ int run(int argc, char** argv) {
                  cells.size(), shard.empty() ? "" : (" (shard " + shard + " of " + std::to_string(all) + ")").c_str(), spec.width,
                  spec.height, spec.spp, spec.timeoutSeconds);
     gi::matrix::RunSummary s = gi::matrix::runCells(spec, cells, options);
-    // The report covers every cell in the folder: other shards' too when they share it.
+    // The report covers the spec's cells found in the folder (other shards' too when they share
+    // it), not cells of an earlier spec that names them no more: those stay on disk, left out.
+    std::set<std::string> named;
+    for (const auto& c : gi::matrix::expandCells(spec)) named.insert(c.id);
     auto results = gi::matrix::collectResults(outDir);
+    size_t before = results.size();
+    results.erase(std::remove_if(results.begin(), results.end(), [&](const auto& r) { return !named.count(r.id); }), results.end());
+    if (results.size() < before)
+        std::fprintf(stderr, "gi-matrix: %zu cells in %s/cells are not in this spec (an earlier spec's?) and are left out of the report\n",
+                     before - results.size(), outDir.c_str());
     gi::matrix::writeResults(outDir, spec.name, results);
     std::fprintf(stderr, "gi-matrix: %zu done, %zu failed, %zu skipped in %s; report: %s\n", s.done, s.failed, s.skipped,
                  gi::matrix::formatDuration(s.seconds).c_str(), (fs::path(outDir) / "index.html").c_str());

@@ -74,6 +74,28 @@ TEST(MatrixRun, RendersResumesShardsAndMerges) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("0 done, 0 failed, 4 skipped"), std::string::npos) << r.output;
 
+    // The spec edited to name fewer cells, into the same folder: the report lists the spec's
+    // cells only, and the editor's loader (reportedResults) reads the same list; the dropped
+    // cell's folder stays on disk.
+    {
+        fs::path fewer = dir / "fewer";
+        fs::create_directories(fewer);
+        std::string text = kSpec;
+        text.replace(text.find(", {\"technique\": \"lpv\", \"label\": \"LPV 16\""), std::string::npos, "]}");
+        fs::path shortSpec = writeSpec(fewer, text);
+        r = test::runCommand(matrix(shortSpec.string() + " --out " + (dir / "all").string() + " --resume"));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("0 done, 0 failed, 3 skipped"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("1 cells in"), std::string::npos) << r.output;
+        EXPECT_EQ(resultsOf(dir / "all").size(), kCells - 1);
+        EXPECT_EQ(matrix::reportedResults(dir / "all").size(), kCells - 1);
+        EXPECT_EQ(matrix::collectResults(dir / "all").size(), kCells) << "left on disk";
+        // Back to the whole spec: all four again.
+        r = test::runCommand(matrix(spec.string() + " --out " + (dir / "all").string() + " --resume"));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_EQ(resultsOf(dir / "all").size(), kCells);
+    }
+
     // Two shards into their own folders, merged: the same cells with the same figures (the
     // runner is deterministic).
     for (int i = 0; i < 2; ++i) {

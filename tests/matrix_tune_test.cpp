@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 
 namespace gi {
@@ -81,6 +82,9 @@ TEST(MatrixTune, WithinTheBudgetBeatsOverItThenSSIMThenCost) {
     EXPECT_TRUE(tuneBetter(made(0.5, 90), made(0.9, 110), 100));
     EXPECT_TRUE(tuneBetter(made(0.9, 90), made(0.8, 10), 100));
     EXPECT_FALSE(tuneBetter(made(0.8, 10), made(0.8, 90), 100)) << "equal SSIM is no improvement";
+    EXPECT_TRUE(tuneBetter(made(0.8001, 10), made(0.8, 90), 100)) << "any gain at less cost";
+    EXPECT_FALSE(tuneBetter(made(0.8005, 95), made(0.8, 90), 100)) << "a costlier point must gain kTuneCostlyGain";
+    EXPECT_TRUE(tuneBetter(made(0.8015, 95), made(0.8, 90), 100));
     EXPECT_TRUE(tuneBetter(made(0.1, 150), made(0.9, 200), 100)) << "over budget: cheaper is better";
     EXPECT_FALSE(tuneBetter(made(0.99, 1, "failed"), made(0.1, 500), 100));
     EXPECT_TRUE(tuneBetter(made(0.1, 500), made(0.99, 1, "failed"), 100));
@@ -168,6 +172,44 @@ TEST(MatrixTune, AStartOverBudgetWalksDownInCostAndTheRenderLimitHolds) {
     EXPECT_EQ(r.renders, 6u);
     ASSERT_TRUE(r.best.has_value());
     EXPECT_LT(r.best->result.msTotal, r.steps.front().result.msTotal) << "the defaults cost 512 ms";
+    ASSERT_GE(r.steps.size(), 2u);
+    EXPECT_EQ(r.steps[1].change, "lpv.gridResolution 32 -> 16") << "over the budget, down first";
+    // Within it, up first.
+    Model roomy;
+    TuneReport u = tunePatternSearch(spec, modelOptions(roomy, 1e9, 2));
+    ASSERT_EQ(u.steps.size(), 2u);
+    EXPECT_EQ(u.steps[1].change, "lpv.gridResolution 32 -> 64");
+}
+
+TEST(MatrixTune, PointsFromAnEarlierRunAreReusedAndCountAsRenders) {
+    // A model that leaves each point's result.json where runCell would.
+    MatrixSpec spec = oneScene();
+    Model m;
+    TuneOptions o = modelOptions(m, 400.0, 12);
+    o.run.resume = true;
+    o.render = [&m](const MatrixSpec& s, const Cell& c, const RunOptions& r) {
+        CellResult result = m(s, c, r);
+        fs::create_directories(cellFolder(r.outDir, c));
+        std::ofstream(cellFolder(r.outDir, c) / "result.json") << resultToJson(result).dump();
+        return result;
+    };
+    TuneReport first = tunePatternSearch(spec, o);
+    EXPECT_EQ(first.reused, 0u);
+    EXPECT_EQ(first.renders, m.renders);
+    // The same search again into the same folder: the same path and result, nothing rendered,
+    // and every point counted.
+    size_t rendered = m.renders;
+    TuneReport again = tunePatternSearch(spec, o);
+    EXPECT_EQ(m.renders, rendered);
+    EXPECT_EQ(again.renders, first.renders);
+    EXPECT_EQ(again.reused, again.renders);
+    ASSERT_TRUE(again.best && first.best);
+    EXPECT_EQ(again.best->settings, first.best->settings);
+    for (const TuneStep& st : again.steps) EXPECT_TRUE(st.reused);
+    // The grid into the same folder reuses the points it shares with the search, and they count.
+    TuneReport grid = tuneGrid(spec, o);
+    EXPECT_EQ(grid.renders, 6u) << "gridResolution x cascadeCount; propagationSteps would pass 12";
+    EXPECT_GT(grid.reused, 0u) << "the defaults at least";
 }
 
 TEST(MatrixTune, GiMatrixTuneWritesTheWinningPresetAndItsPath) {

@@ -459,6 +459,22 @@ std::vector<CellResult> collectResults(const fs::path& dir) {
     return out;
 }
 
+std::vector<CellResult> reportedResults(const fs::path& dir) {
+    std::vector<CellResult> all = collectResults(dir);
+    fs::path listed = dir / "results.json";
+    std::error_code ec;
+    if (!fs::is_regular_file(listed, ec)) return all;
+    std::set<std::pair<std::string, std::string>> named;
+    try {
+        for (const json& r : json::parse(readTextFile(listed, size_t(256) << 20)))
+            named.emplace(r.value("scene", std::string()), r.value("id", std::string()));
+    } catch (const std::exception& e) {
+        throw Error(listed.string() + ": " + e.what());
+    }
+    all.erase(std::remove_if(all.begin(), all.end(), [&](const CellResult& r) { return !named.count({r.scene, r.id}); }), all.end());
+    return all;
+}
+
 namespace {
 std::string csvField(const std::string& s) {
     if (s.find_first_of(",\"\n\r") == std::string::npos) return s;

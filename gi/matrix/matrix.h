@@ -137,6 +137,10 @@ CellResult resultFromStats(const Cell& cell, const std::filesystem::path& cellDi
 // Every result.json under `dir`/cells, sorted by scene, then technique, then label.
 std::vector<CellResult> collectResults(const std::filesystem::path& dir);
 
+// The cells the folder's report lists: collectResults, less the cells its results.json does not
+// name (an earlier spec's, left on disk); every cell when there is no results.json yet.
+std::vector<CellResult> reportedResults(const std::filesystem::path& dir);
+
 // results.csv (RFC 4180 quoting) and results.json.
 std::string resultsCSV(const std::vector<CellResult>& results);
 nlohmann::json resultsJSON(const std::vector<CellResult>& results);

@@ -98,7 +98,7 @@ bool tuneBetter(const CellResult& a, const CellResult& b, double budgetMs) {
     if (!b.ok()) return true;
     bool fa = a.msTotal <= budgetMs, fb = b.msTotal <= budgetMs;
     if (fa != fb) return fa;
-    if (fa) return a.ssim > b.ssim + 1e-5;
+    if (fa) return a.ssim > b.ssim + (a.msTotal > b.msTotal ? kTuneCostlyGain : kTuneGain);
     return a.msTotal < b.msTotal;
 }
 
@@ -150,10 +150,18 @@ public:
                 step.result = CellResult();
             }
         }
-        if (!step.result.ok()) {
+        // A point read from an earlier run counts as a render all the same, so a resumed search
+        // takes the path it would have taken uninterrupted, and searches that share an output
+        // folder (a comparison on the same measurements) spend their renders alike.
+        // A render that ran out of time under a limit at least as long as this one's would
+        // again: it is reused too (other failures render again, as a matrix's --resume does).
+        step.reused = step.result.ok() ||
+                      (step.result.status == "timeout" && step.result.wallSeconds + 0.5 >= mSpec.timeoutSeconds);
+        if (step.reused)
+            ++mReport.reused;
+        else
             step.result = mOptions.render ? mOptions.render(mSpec, cell, mOptions.run) : runCell(mSpec, cell, mOptions.run);
-            step.render = ++mReport.renders;
-        }
+        step.render = ++mReport.renders;
         step.withinBudget = step.result.ok() && step.result.msTotal <= mOptions.budgetMs;
         if (!mReport.best || tuneBetter(step.result, mReport.best->result, mOptions.budgetMs)) {
             step.best = true;
@@ -188,8 +196,11 @@ TuneReport tunePatternSearch(const MatrixSpec& spec, const TuneOptions& options)
         for (size_t i = 0; i < space.size() && !e.exhausted(); ++i) {
             const TuneParameter& p = space[i];
             if (p.ordered) {
-                // Walk one way while it keeps improving; try the other way only if the first did not.
-                for (int dir : {+1, -1}) {
+                // Walk one way while it keeps improving; try the other way only if the first did
+                // not. Up first (a finer grid, more steps: usually a better picture), but down
+                // first while the best is over the budget (usually cheaper).
+                const bool over = !(best.ok() && best.msTotal <= options.budgetMs);
+                for (int dir : {over ? -1 : +1, over ? +1 : -1}) {
                     bool moved = false;
                     while (!e.exhausted()) {
                         long next = long(current[i]) + dir;
@@ -259,6 +270,7 @@ json tuneReportToJson(const TuneReport& r, double budgetMs) {
     json steps = json::array();
     for (const TuneStep& s : r.steps)
         steps.push_back({{"render", s.render},
+                         {"reused", s.reused},
                          {"change", s.change},
                          {"settings", s.settings},
                          {"status", s.result.status},
@@ -266,7 +278,7 @@ json tuneReportToJson(const TuneReport& r, double budgetMs) {
                          {"ms", s.result.msTotal},
                          {"withinBudget", s.withinBudget},
                          {"best", s.best}});
-    json j = {{"method", r.method}, {"budgetMs", budgetMs}, {"renders", r.renders}, {"steps", steps}};
+    json j = {{"method", r.method}, {"budgetMs", budgetMs}, {"renders", r.renders}, {"reused", r.reused}, {"steps", steps}};
     if (r.best)
         j["best"] = {{"settings", r.best->settings}, {"ssim", r.best->result.ssim}, {"ms", r.best->result.msTotal},
                      {"withinBudget", r.best->withinBudget}};

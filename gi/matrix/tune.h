@@ -8,11 +8,13 @@
 // "the default" is the scene preset's value where it sets one. Floats at 0 (meaning
 // "automatic") are left alone.
 //
-// The search is a coordinate pattern search: from the defaults, each sweep tries one step up and
-// one down on every ladder (every other value of an enum or bool) from the current best, and
-// moves to the best candidate that improves it; it ends when a sweep improves nothing or the
+// The search is a coordinate pattern search: from the defaults, each sweep walks every ladder
+// from the current best, one step at a time while that improves it, up first (down first while
+// the best is over the budget) and the other way if the first step did not improve; an enum or
+// bool tries every other value; it ends when a sweep improves nothing or the
 // renders run out. "Better" is lexicographic: within the budget beats over it; within it, higher
-// SSIM; over it, lower ms (so a start over budget first walks down in cost). Each render is a
+// SSIM (by kTuneCostlyGain when it costs more); over it, lower ms (so a start over budget first
+// walks down in cost). Each render is a
 // matrix cell (run.h), so a repeated point is not rendered twice and an interrupted tune resumes.
 //
 // The baseline it is compared with (tuneGrid): a grid over the same ladders: the first ladders
@@ -41,7 +43,8 @@ struct TuneParameter {
 std::vector<TuneParameter> tuneSpace(const std::string& technique, const nlohmann::json& base = nullptr);
 
 struct TuneStep {
-    size_t render = 0;                // 1-based; 0: taken from an earlier render of the same point
+    size_t render = 0;                // 1-based
+    bool reused = false;              // read from an earlier run's cell folder, not rendered now
     std::vector<std::string> settings;
     std::string change;               // "lpv.gridResolution 32 -> 16", "defaults"
     CellResult result;
@@ -52,7 +55,8 @@ struct TuneStep {
 struct TuneReport {
     std::vector<TuneStep> steps;
     std::optional<TuneStep> best;
-    size_t renders = 0;
+    size_t renders = 0;               // points evaluated, rendered now or reused
+    size_t reused = 0;                // of them, read from earlier runs in the output folder
     std::string method;               // "pattern search" or "grid"
 };
 
@@ -66,6 +70,12 @@ struct TuneOptions {
     std::function<CellResult(const MatrixSpec&, const Cell&, const RunOptions&)> render;
     std::function<void(const TuneReport&)> progress;  // after every render
 };
+
+// The SSIM a point must gain over the best so far: any gain at no more cost, and at least
+// kTuneCostlyGain when it costs more (below that, llvmpipe's timing noise and a fourth-decimal
+// SSIM difference would trade real milliseconds for nothing visible).
+inline constexpr double kTuneGain = 1e-5;
+inline constexpr double kTuneCostlyGain = 1e-3;
 
 // True when a beats b in the order above.
 bool tuneBetter(const CellResult& a, const CellResult& b, double budgetMs);

@@ -32,7 +32,7 @@ std::string figures(const matrix::CellResult& c) {
 
 void Editor::loadMatrix(const fs::path& dir) {
     mMatrixDir = dir.string();
-    mMatrixCells = matrix::collectResults(dir);
+    mMatrixCells = matrix::reportedResults(dir);
     if (mMatrixCells.empty()) throw Error(dir.string() + ": no gi-matrix results (cells/*/*/result.json) there");
     mMatrixPick = {0, std::min<size_t>(1, mMatrixCells.size() - 1)};
     for (auto& t : mMatrixImages) t = gl::Texture();
