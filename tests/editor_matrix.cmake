@@ -19,7 +19,7 @@ screenshot ${WORK}/split
 run_under_xvfb(1200x700x24 ${EDITOR} --width 1100 --height 650 --script ${WORK}/script.txt --ui-stats ${WORK}/stats.json)
 file(READ ${WORK}/stats.json stats)
 string(JSON cells GET "${stats}" editor matrix cells)
-expect("cells loaded from the smoke matrix" "${cells}" "12")
+expect("cells loaded from the smoke matrix" "${cells}" "14")
 string(JSON shown GET "${stats}" editor matrix imagesShown)
 expect("both cells' images shown" "${shown}" "ON")
 string(JSON view GET "${stats}" editor matrix view)

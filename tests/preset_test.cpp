@@ -117,7 +117,7 @@ TEST(Preset, MessagesNameTheKey) {
     EXPECT_NE(with([](json& j) { j["camra"] = json::object(); }).find("did you mean 'camera'"), std::string::npos);
     EXPECT_NE(with([](json& j) { j["camera"]["fovY"] = "wide"; }).find("key 'camera.fovY': expected a number, got string"),
               std::string::npos);
-    EXPECT_NE(with([](json& j) { j["technique"] = "magic"; }).find("unknown value 'magic' (valid: none, lpv, vct)"), std::string::npos);
+    EXPECT_NE(with([](json& j) { j["technique"] = "magic"; }).find("unknown value 'magic' (valid: none, lpv, vct, diffusion)"), std::string::npos);
     EXPECT_NE(with([](json& j) { j["lights"] = json::array({{{"type", "laser"}}}); }).find("key 'lights.0.type'"),
               std::string::npos);
     EXPECT_NE(with([](json& j) { j["lights"] = 3; }).find("key 'lights'"), std::string::npos);

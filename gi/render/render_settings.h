@@ -6,6 +6,7 @@
 #include "gi/preset/settings.h"
 #include "gi/util/budget.h"
 #include "gi/scene/scene_settings.h"
+#include "gi/diffusion/diffusion_settings.h"
 #include "gi/ssao/ssao_settings.h"
 #include "gi/vct/vct_settings.h"
 #include "gi/volumetric/volumetric_settings.h"
@@ -75,6 +76,7 @@ namespace gi {
     X(ToneMapSettings, toneMap)     \
     X(LPVSettings, lpv)             \
     X(VCTSettings, vct)             \
+    X(DiffusionSettings, diffusion) \
     X(SSAOSettings, ssao)           \
     X(EnvironmentSettings, environment) \
     X(VolumetricSettings, volumetric)

@@ -17,8 +17,8 @@ namespace {
 // The radiance leaving each side of a voxel's surface (inject, bounce, resolve): positive HDR
 // colour, no alpha, so the packed float format at half RGBA16F's size (5-6 bit mantissas, about
 // 3% steps, far below the voxelization's own error).
-constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;
-constexpr size_t kVoxelBytes = 2 * 4 + 2 * 4;  // albedo, normal (r32ui); exit front/back (R11F_G11F_B10F)
+constexpr GLenum kExitFormat = SurfaceVoxelizer::kExitFormat;
+constexpr size_t kVoxelBytes = SurfaceVoxelizer::kBytesPerVoxel;
 
 size_t voxels(int res) { return size_t(res) * res * res; }
 
@@ -77,27 +77,16 @@ std::vector<VoxelBox> vctLevels(const VCTSettings& s, const glm::vec3& sceneMin,
 }
 
 VCT::VCT()
-    : mVoxelizeProg("vct.voxelize", {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
-                                     {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
-                                     {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}),
-      mClearProg("vct.clear", {{GL_COMPUTE_SHADER, "vct/clear.comp"}}),
-      mInjectProg("vct.inject", {{GL_COMPUTE_SHADER, "vct/inject.comp"}}),
-      mResolveProg("vct.resolve", {{GL_COMPUTE_SHADER, "vct/resolve.comp"}}),
+    : mResolveProg("vct.resolve", {{GL_COMPUTE_SHADER, "vct/resolve.comp"}}),
       mMipProg("vct.mip", {{GL_COMPUTE_SHADER, "vct/mip.comp"}}),
       mUpsampleProg("vct.upsample", {{GL_COMPUTE_SHADER, "vct/upsample.comp"}}),
       mCompactProg("vct.compact", {{GL_COMPUTE_SHADER, "vct/compact.comp"}}),
       mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
-    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg})
-        mBlock.requireIn(*p);
-    mMaterialBinding.requireIn(mVoxelizeProg);
-    mEmptyFBO = gl::createFramebuffer();
+    for (gl::Program* p : {&mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg}) mBlock.requireIn(*p);
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
     // The anisotropic atlas is read one mip at a time (trace.glsl blends the two by hand).
     mAnisoSampler = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_NEAREST);
-    mShadowSampler = makeSampler(GL_CLAMP_TO_EDGE, GL_LINEAR);
-    glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
 }
 
 VCT::~VCT() = default;
@@ -161,8 +150,6 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
             t = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
             mRadianceBytes += t.bytes();
         }
-    glNamedFramebufferParameteri(mEmptyFBO.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, r);
-    glNamedFramebufferParameteri(mEmptyFBO.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, r);
     mVoxelizedVoxels.assign(size_t(count), 0);
 }
 
@@ -189,38 +176,6 @@ vct::VCTParams VCT::gridParams(const Level& level) const {
     return p;
 }
 
-void VCT::voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax) {
-    // Clear the region first (the whole grid, or a clipmap slab in its toroidal place).
-    vct::VCTParams p = gridParams(level);
-    p.clipMin = glm::ivec4(clipMin, 0);
-    p.clipMax = glm::ivec4(clipMax, 0);
-    mClearProg.use();
-    mBlock.set(p);
-    glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-    glDispatchCompute(g, g, g);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, mEmptyFBO.id());
-    glViewport(0, 0, mResolution, mResolution);
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    mVoxelizeProg.use();
-    glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    mBlock.set(p);
-    mMaterialBinding.begin(mRepeat.id());
-    ctx.scene.draw([&](const Material& m, int) { mMaterialBinding.bind(ctx.scene, m); });
-    mMaterialBinding.end();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDepthMask(GL_TRUE);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    ++mVoxelizationCount;
-}
-
 void VCT::updateGrids(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("vct.voxelize");
     const Bounds& b = ctx.scene.bounds();
@@ -239,7 +194,7 @@ void VCT::updateGrids(const FrameContext& ctx) {
         l.box = nb;
         l.voxelized = true;
         if (!partial) {
-            voxelize(ctx, l, glm::ivec3(0), glm::ivec3(r));
+            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), glm::ivec3(0), glm::ivec3(r));
             mVoxelizedVoxels[k] = voxels(r);
             continue;
         }
@@ -249,7 +204,7 @@ void VCT::updateGrids(const FrameContext& ctx) {
             glm::ivec3 lo(0), hi(r);
             if (delta[axis] > 0) lo[axis] = r - delta[axis];
             else hi[axis] = -delta[axis];
-            voxelize(ctx, l, lo, hi);
+            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), lo, hi);
             glm::ivec3 size = hi - lo;
             mVoxelizedVoxels[k] += size_t(size.x) * size_t(size.y) * size_t(size.z);
         }
@@ -258,37 +213,14 @@ void VCT::updateGrids(const FrameContext& ctx) {
 
 void VCT::inject(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("vct.inject");
-    const auto& lights = ctx.settings.lights;
-    mInjectProg.use();
-    for (Level& l : mLevels) {
-        bindVoxelImages(l, GL_READ_WRITE);
-        size_t first = 0;
-        do {
-            int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
-            vct::VCTParams p = gridParams(l);
-            p.lightFirst = int(first);
-            p.lightCount = count;
-            p.accumulate = first > 0 ? 1 : 0;
-            mBlock.set(p);
-            for (int i = 0; i < count; ++i) {
-                const ShadowMapView& sm = ctx.shadows[first + size_t(i)];
-                bindBatchShadowMap(i, sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
-                if (sm.depth) glBindSampler(GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i), mShadowSampler.id());
-            }
-            GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-            glDispatchCompute(g, g, g);
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            first += size_t(count);
-        } while (first < lights.size());
-    }
-    for (int u = 0; u < 2 * vct::kVCTMaxLights; ++u) glBindSampler(GLuint(vct::kVCTUnitShadow2D + u), 0);
+    for (Level& l : mLevels) mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.exitFront.id(), l.exitBack.id());
 }
 
-void VCT::bindVoxelImages(const Level& l, GLenum exitAccess) const {
+void VCT::bindVoxelImages(const Level& l) const {
     glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageExitFront, l.exitFront.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
-    glBindImageTexture(vct::kVCTImageExitBack, l.exitBack.id(), 0, GL_TRUE, 0, exitAccess, kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitFront, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitBack, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
 }
 
 void VCT::resolve(Level& level, bool bounced) {
@@ -414,7 +346,7 @@ void VCT::bounce(const FrameContext& ctx) {
             // Start at least a voxel diagonal out so a voxel does not gather its own light.
             p.nudge = std::max(s.nudge, 1.0f);
             mBlock.set(p);
-            bindVoxelImages(l, GL_READ_ONLY);
+            bindVoxelImages(l);
             glBindImageTexture(vct::kVCTImageBouncedFront, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
             glBindImageTexture(vct::kVCTImageBouncedBack, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
@@ -562,9 +494,8 @@ size_t VCTSettings::estimateBytes(const FrameSettings& fs) { return VCT::estimat
 size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndirect.bytes() + mLowSpecular.bytes(); }
 
 bool VCT::reloadShaders(std::string& log) {
-    bool ok = true;
-    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg, &mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg,
-                           &mBounceProg, &mTraceProg})
+    bool ok = mSurfaces.reloadShaders(log);
+    for (gl::Program* p : {&mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg, &mBounceProg, &mTraceProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

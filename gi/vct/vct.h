@@ -79,6 +79,7 @@
 #include "gi/render/material_binding.h"
 #include "gi/render/pass.h"
 #include "gi/vct/cone_set.h"
+#include "gi/vct/surface_voxels.h"
 #include "vct/vct_shared.h"
 
 #include <glm/glm.hpp>
@@ -124,7 +125,7 @@ public:
 
     struct Level {
         gl::Texture albedo, normal;             // r32ui running averages
-        gl::Texture exitFront, exitBack;        // RGBA16F radiance each side leaves
+        gl::Texture exitFront, exitBack;        // R11F_G11F_B10F radiance each side leaves
         gl::Texture bouncedFront, bouncedBack;  // direct + gathered light after a bounce (bounceCount > 1)
         gl::Buffer occupiedList, occupiedDispatch;  // compact.comp's voxel list and indirect dispatch
         gl::Texture radiance;                   // RGBA16F premultiplied radiance + opacity, mips
@@ -140,37 +141,34 @@ public:
     // Voxels written by the last clipmap update, per level (a full level counts res^3).
     const std::vector<size_t>& voxelizedVoxels() const { return mVoxelizedVoxels; }
     // Voxelizations run since creation (tests: a static grid is not voxelized twice).
-    int voxelizationCount() const { return mVoxelizationCount; }
+    int voxelizationCount() const { return mSurfaces.voxelizationCount(); }
 
 private:
-    gl::Program mVoxelizeProg, mClearProg, mInjectProg, mResolveProg, mMipProg, mUpsampleProg;
+    SurfaceVoxelizer mSurfaces;  // passes 1 and 2
+    gl::Program mResolveProg, mMipProg, mUpsampleProg;
     gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
     gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
     gl::Program mCompactProg;
     gl::UniformBlock<vct::VCTParams> mBlock;  // every pass reads it
-    MaterialBinding mMaterialBinding;  // the voxelization reads it
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
     std::array<gl::Texture, 3> mSH;
-    gl::Framebuffer mEmptyFBO;
-    gl::Sampler mLinear, mRepeat, mAnisoSampler, mShadowSampler;
+    gl::Sampler mLinear, mRepeat, mAnisoSampler;
     int mResolution = 0, mMipCount = 0;
     bool mAnisotropic = false, mSHVoxels = false;
     VCTMode mMode = VCTMode::Dense;
     uint64_t mSceneId = 0;
     size_t mVoxelBytes = 0, mRadianceBytes = 0;
     std::vector<size_t> mVoxelizedVoxels;
-    int mVoxelizationCount = 0;
 
     void allocate(const FrameSettings& fs, uint8_t changes);
     // A fresh VCTParams holding the grid fields of `level`.
     vct::VCTParams gridParams(const Level& level) const;
     // The cone set and march fields of bounce and trace.
     void setConeParams(vct::VCTParams& p, const VCTSettings& s) const;
-    void voxelize(const FrameContext& ctx, Level& level, glm::ivec3 clipMin, glm::ivec3 clipMax);
     void updateGrids(const FrameContext& ctx);
     void inject(const FrameContext& ctx);
-    void bindVoxelImages(const Level& level, GLenum exitAccess) const;
+    void bindVoxelImages(const Level& level) const;
     void resolve(Level& level, bool bounced);
     void buildMips();
     void bounce(const FrameContext& ctx);

@@ -1,0 +1,97 @@
+// Volume-based diffuse global illumination by occupancy-aware SH diffusion: seed 001 (Mavridis,
+// Gaitatzes, Papaioannou), digest in seeds/digests/001.md. Light moves through a voxel grid as
+// in a light propagation volume, but only through empty cells; where it reaches an occupied cell
+// it is absorbed there (what shading reads) and reflected by the cell's albedo, so occlusion and
+// further bounces come from the same iterations.
+//
+// Passes (timer names in brackets):
+//   1. Voxelization [diffusion.voxelize]: VCT's (gi/vct/surface_voxels.h) into one dense grid
+//      holding the scene's bounding cube (2 % larger): albedo, mean normal and occupancy, again
+//      only when the scene or the grid changes. Seed 001 slices the scene along three axes and
+//      merges with MAX; the dominant-axis conservative voxelizer catches every orientation too,
+//      in one draw.
+//   2. Injection [diffusion.inject]: VCT's injection gives the radiance each side of every
+//      occupied cell's surface reflects of the direct light (shadow-mapped; area lights exact,
+//      emissive surfaces included as area lights); init.comp turns each side into a clamped
+//      cosine lobe (seed 001's "hemispherical VPL"; the source gives no lobe) in the light
+//      buffer, 2-band SH per colour, and clears the accumulation.
+//   3. Propagation [diffusion.propagate], `iterations` steps, each two dispatches: emit.comp,
+//      the flux each cell sends through each face, and gather.comp, each cell's six incoming
+//      faces (the source's gather). Empty cells pass light on; occupied cells accumulate what
+//      arrives and reflect it. shaders/diffusion/{emit,gather}.comp open with the choices.
+//   4. Shading [diffusion.shade]: per pixel, the accumulation of the occupied cells among the
+//      eight nearest, renormalised trilinear weights, clamped cosine irradiance; resolve.comp
+//      also writes the accumulation into a volume for the debug view diffusion.accumulated.
+//
+// Where the source is wrong or silent (chosen here, tested in tests/diffusion_test.cpp):
+//   - Eq. 3.2.2 calls the face integral an average but never divides by the face's solid angle;
+//     as written each step multiplies the flux by 2.09. Here a face passes the integral itself
+//     (flux), and the receiving cell holds it as a beam of that flux: free space conserves flux.
+//   - 2-band lobes are negative behind: the faces' clamped parts are rescaled to the cell's flux.
+//   - Face transfer between two occupied cells is closed, so a lit floor does not light itself.
+//   - Reflection is two-sided: light reaching a surface's back is reflected to its back (seed
+//     001 reflects along the mean normal only), so a one-voxel wall lit on one side stays dark
+//     on the other.
+//   - Units: the buffers carry flux per unit of surface area (a side leaving radiance L emits pi
+//     L); the cell size cancels between injection and shading.
+// Not here yet (issue 16): the amortised update over frames, slicing voxelization, the bounce
+// count per cell, the sky. Light diffuses rather than travels straight:
+// seed 001's "n Y steps for n bounces" describes only the front of it.
+#pragma once
+
+#include "diffusion/diffusion_shared.h"
+#include "gi/diffusion/diffusion_settings.h"
+#include "gi/gl/handle.h"
+#include "gi/gl/shader.h"
+#include "gi/gl/uniform_block.h"
+#include "gi/render/pass.h"
+#include "gi/vct/surface_voxels.h"
+#include "gi/vct/vct.h"
+
+namespace gi {
+
+class Diffusion : public Pass {
+public:
+    Diffusion();
+
+    static size_t estimateBytes(const FrameSettings& fs);
+
+    void indirect(FrameContext& ctx) override;
+    std::vector<DebugView> debugViews() const override;
+    size_t passMemory(const std::string& pass) const override;
+    size_t memoryBytes() const override;
+    std::vector<VolumeMemory> volumeMemory() const override;
+    std::vector<std::string> passNames(const FrameSettings& fs) const override;
+    bool reloadShaders(std::string& log) override;
+
+    // One propagation step (emit, then gather) on volumes the caller owns (tests): `albedo` and
+    // `normal` as the voxelizer writes them (r32ui, res^3), `source` and `destination` 3 vec4 per
+    // cell, `outgoing` 6 vec4 per cell, `accum` 3 vec4 per cell (added to).
+    void propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuint destination, GLuint outgoing, GLuint accum, int res,
+                       DiffusionAlbedo albedoMode);
+
+    int resolution() const { return mResolution; }
+    const VoxelBox& box() const { return mBox; }
+    // The accumulated light, 3 vec4 (R, G, B SH) per cell, and the volumes it was made with.
+    const gl::Buffer& accumulated() const { return mAccum; }
+    const gl::Texture& albedoVolume() const { return mAlbedo; }
+    int voxelizationCount() const { return mSurfaces.voxelizationCount(); }
+
+private:
+    SurfaceVoxelizer mSurfaces;
+    gl::Program mInitProg, mEmitProg, mGatherProg, mShadeProg, mResolveProg;
+    gl::UniformBlock<shared::DiffusionParams> mBlock;
+    gl::Texture mAlbedo, mNormal, mExitFront, mExitBack;
+    gl::Texture mView;  // the accumulation, RGBA16F (diffusion.accumulated)
+    gl::Buffer mLight[2], mOutgoing, mAccum;
+    VoxelBox mBox;
+    int mResolution = 0;
+    uint64_t mSceneId = 0;
+    bool mVoxelized = false;
+    size_t mVoxelBytes = 0, mBufferBytes = 0;
+
+    void allocate(const FrameSettings& fs, uint8_t changes);
+    shared::DiffusionParams params(const FrameSettings& fs) const;
+};
+
+}  // namespace gi

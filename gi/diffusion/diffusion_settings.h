@@ -1,0 +1,38 @@
+// Settings of volume-based diffuse GI by occupancy-aware SH diffusion (gi/diffusion/diffusion.h
+// describes the technique).
+#pragma once
+
+#include "gi/preset/settings.h"
+
+namespace gi {
+
+// The albedo a cell reflects the light that reaches it with.
+enum class DiffusionAlbedo { Voxel, Half };
+template <>
+struct EnumNames<DiffusionAlbedo> {
+    static constexpr std::array<std::pair<DiffusionAlbedo, const char*>, 2> values{
+        {{DiffusionAlbedo::Voxel, "voxel"}, {DiffusionAlbedo::Half, "half"}}};
+};
+
+struct DiffusionSettings {
+    static constexpr std::string_view kSection = "diffusion";
+    static constexpr PassRole kRole = PassRole::Technique;
+    static std::unique_ptr<Pass> createPass();
+    static size_t estimateBytes(const FrameSettings& fs);
+    // Refuses a frame whose propagation is estimated past render.timeBudgetSeconds.
+    static void checkTime(const FrameSettings& fs);
+    int gridResolution = 32;       // cells per side of the grid, which holds the scene's bounding cube
+    int iterations = 64;           // propagation steps; light moves at most one cell per step and bounces where it meets a surface
+    DiffusionAlbedo bounceAlbedo = DiffusionAlbedo::Voxel;  // the voxel's own albedo, or seed 001's constant 0.5
+    float intensity = 1.0f;        // scale of the indirect light
+
+    template <class V>
+    void visit(V&& v) {
+        v(gridResolution, {"gridResolution", "Cells per side of the grid (the scene's bounding cube)", "cells", 8, 128, Cost::Reallocate, 1});
+        v(iterations, {"iterations", "Propagation steps (light moves one cell per step; bounces happen on the way)", "", 0, 1024});
+        v(bounceAlbedo, {"bounceAlbedo", "Albedo of the light a surface reflects: the voxel's own (voxel) or seed 001's 0.5 (half)"});
+        v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
+    }
+};
+
+}  // namespace gi

@@ -1,0 +1,104 @@
+#include "gi/vct/surface_voxels.h"
+
+#include "common/shared.h"
+#include "gi/render/gpu_scene.h"
+#include "gi/render/lights.h"
+
+#include <algorithm>
+
+namespace gi {
+
+SurfaceVoxelizer::SurfaceVoxelizer()
+    : mVoxelizeProg("vct.voxelize", {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
+                                     {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
+                                     {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}),
+      mClearProg("vct.clear", {{GL_COMPUTE_SHADER, "vct/clear.comp"}}),
+      mInjectProg("vct.inject", {{GL_COMPUTE_SHADER, "vct/inject.comp"}}),
+      mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
+    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg}) mBlock.requireIn(*p);
+    mMaterialBinding.requireIn(mVoxelizeProg);
+    mEmptyFBO = gl::createFramebuffer();
+    mRepeat = gl::createSampler({GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT});
+    mShadowSampler = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
+    glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+
+void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
+                                glm::ivec3 clipMin, glm::ivec3 clipMax) {
+    const int res = grid.resolution;
+    vct::VCTParams p = grid;
+    p.clipMin = glm::ivec4(clipMin, 0);
+    p.clipMax = glm::ivec4(clipMax, 0);
+    mClearProg.use();
+    mBlock.set(p);
+    glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    GLuint g = gl::groupCount(res, shared::kGroup3D);
+    glDispatchCompute(g, g, g);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    if (mFramebufferSize != res) {
+        glNamedFramebufferParameteri(mEmptyFBO.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, res);
+        glNamedFramebufferParameteri(mEmptyFBO.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, res);
+        mFramebufferSize = res;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, mEmptyFBO.id());
+    glViewport(0, 0, res, res);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    mVoxelizeProg.use();
+    glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    mBlock.set(p);
+    mMaterialBinding.begin(mRepeat.id());
+    ctx.scene.draw([&](const Material& m, int) { mMaterialBinding.bind(ctx.scene, m); });
+    mMaterialBinding.end();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDepthMask(GL_TRUE);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    ++mVoxelizationCount;
+}
+
+void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
+                              GLuint exitFront, GLuint exitBack) {
+    const auto& lights = ctx.settings.lights;
+    mInjectProg.use();
+    glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageExitFront, exitFront, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitBack, exitBack, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
+    size_t first = 0;
+    do {
+        int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
+        vct::VCTParams p = grid;
+        p.lightFirst = int(first);
+        p.lightCount = count;
+        p.accumulate = first > 0 ? 1 : 0;
+        mBlock.set(p);
+        for (int i = 0; i < count; ++i) {
+            const ShadowMapView& sm = ctx.shadows[first + size_t(i)];
+            bindBatchShadowMap(i, sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
+            if (sm.depth) glBindSampler(GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i), mShadowSampler.id());
+        }
+        GLuint g = gl::groupCount(grid.resolution, shared::kGroup3D);
+        glDispatchCompute(g, g, g);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        first += size_t(count);
+    } while (first < lights.size());
+    for (int u = 0; u < 2 * vct::kVCTMaxLights; ++u) glBindSampler(GLuint(vct::kVCTUnitShadow2D + u), 0);
+}
+
+bool SurfaceVoxelizer::reloadShaders(std::string& log) {
+    bool ok = true;
+    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg})
+        if (!p->reload()) {
+            ok = false;
+            log += p->log() + "\n";
+        }
+    return ok;
+}
+
+}  // namespace gi

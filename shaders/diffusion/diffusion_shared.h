@@ -1,0 +1,61 @@
+// Parameters and bindings of the diffusion technique's passes (gi/diffusion/diffusion.h), shared
+// by C++ and GLSL, as lpv/lpv_shared.h. One block, DiffusionBlock, for every pass; layout in
+// groups of four so std140 and C++ agree.
+#ifdef __cplusplus
+#pragma once
+#endif
+#include "common/shared.h"
+#ifdef __cplusplus
+namespace gi::shared {
+#endif
+
+GI_CONST int kDiffusionBlockBinding = 0;
+
+// Image bindings of the surface voxels (gi/vct/surface_voxels.h writes them).
+GI_CONST int kDiffusionImageAlbedo = 0;     // r32ui RGBA8 running average, a > 0: occupied
+GI_CONST int kDiffusionImageNormal = 1;     // r32ui RGBA8 running average of n * 0.5 + 0.5
+GI_CONST int kDiffusionImageExitFront = 3;  // R11F_G11F_B10F radiance leaving along the mean normal
+GI_CONST int kDiffusionImageExitBack = 4;   // and against it
+GI_CONST int kDiffusionImageIndirect = 2;   // shade: E / pi, rgba16f
+GI_CONST int kDiffusionImageView = 2;       // resolve: the accumulation as an rgba16f volume
+
+// Shader storage bindings.
+GI_CONST int kDiffusionBufferSource = 0;       // 3 vec4 (R, G, B SH) per cell: the light in flight
+GI_CONST int kDiffusionBufferDestination = 1;  // the next step's
+GI_CONST int kDiffusionBufferOutgoing = 2;     // emit: 6 vec4 per cell, the flux (rgb) leaving through each face
+GI_CONST int kDiffusionBufferAccum = 3;        // 3 vec4 per cell: incoming light summed over the steps (occupied cells)
+
+// The face transfer (seed 001 eq. 3.2.1-3.2.3, corrected, see propagate.glsl): the 2-band SH of
+// the indicator of the solid angle a cell's face subtends from its centre (2 pi / 3), towards
+// axis d: (kFaceBand0, kFaceBand1 * d in the basis's order). kFaceBand0 = (2 pi / 3) * Y00;
+// kFaceBand1 = the face's projected solid angle 2 sqrt(2) atan(1 / sqrt(2)) times Y1.
+GI_CONST float kFaceSolidAngle = 2.0943951;
+GI_CONST float kFaceBand0 = 0.5908180;
+GI_CONST float kFaceBand1 = 0.8505786;
+// Shading: a beam's lobe (face lobe / solid angle) under the clamped cosine head on gives
+// (kFaceBand0 kCosLobe0 + kFaceBand1 kCosLobe1) / kFaceSolidAngle = 0.66560 of its flux; this
+// undoes that, so the light arriving head on gives its flux per area as irradiance.
+GI_CONST float kDiffusionIrradianceScale = 1.5024209;
+
+struct DiffusionParams {
+    vec4 gridMin;      // xyz: world corner of cell 0; w: cell size
+    int resolution;
+    int albedoMode;    // 0: the voxel's albedo; 1: 0.5 (seed 001's constant)
+    float intensity;
+    float pad0;
+    mat4 invViewProj;  // shade: pixel to world
+    int width;
+    int height;
+    float pad1;
+    float pad2;
+};
+
+#ifdef __cplusplus
+inline constexpr const char* kDiffusionBlockName = "DiffusionBlock";
+static_assert(sizeof(DiffusionParams) == 112);
+}  // namespace gi::shared
+#else
+layout(std140, binding = kDiffusionBlockBinding) uniform DiffusionBlock {
+    DiffusionParams uDiffusion;
+};
+#endif

@@ -1,0 +1,66 @@
+// Propagation, second half of a step: each cell gathers the flux its six neighbours sent through
+// the faces they share (seed 001 eq. 3.2.3: six reads, one write). Flux s arriving along axis d
+// is the beam s * faceLobe(d) / solid angle (its flux is s).
+//   - An empty cell passes the light on: the next step's light in flight is what it gathered.
+//   - An occupied cell takes it: it adds it to its accumulation (what shading reads) and
+//     reflects it as the next step's light, the flux each side of its surface received
+//     (light along d reaches the front, the side the mean normal faces, when d . n < 0; half each
+//     way at d . n = 0) times the albedo, as a clamped cosine lobe from that side (the source
+//     reflects along its mean normal only, which throws away light reaching a one-voxel wall's
+//     back). The albedo is the voxel's, or 0.5 with albedoMode 1 (the source's constant).
+// So bounces come from steps: light reflected at step k travels on at step k + 1.
+#include "diffusion/common.glsl"
+
+layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
+layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uNormal;
+layout(std430, binding = kDiffusionBufferOutgoing) readonly buffer Outgoing { vec4 outgoing[]; };
+layout(std430, binding = kDiffusionBufferDestination) writeonly buffer Destination { vec4 dst[]; };
+layout(std430, binding = kDiffusionBufferAccum) buffer Accumulated { vec4 accum[]; };
+
+void main() {
+    ivec3 cell = ivec3(gl_GlobalInvocationID);
+    if (!insideGrid(cell)) return;
+    int i = cellIndex(cell);
+    vec3 arriving[6];
+    bool arrived = false;
+    for (int d = 0; d < 6; ++d) {
+        ivec3 from = cell - kDirections[d];
+        arriving[d] = insideGrid(from) ? outgoing[6 * cellIndex(from) + d].rgb : vec3(0.0);
+        arrived = arrived || arriving[d] != vec3(0.0);
+    }
+    vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
+    for (int d = 0; d < 6; ++d) {
+        vec4 beam = faceLobe(vec3(kDirections[d])) / kFaceSolidAngle;
+        r += arriving[d].r * beam;
+        g += arriving[d].g * beam;
+        b += arriving[d].b * beam;
+    }
+    uint packedAlbedo = imageLoad(uAlbedo, cell).r;
+    if (occupied(packedAlbedo)) {
+        if (arrived) {
+            accum[3 * i] += r;
+            accum[3 * i + 1] += g;
+            accum[3 * i + 2] += b;
+        }
+        vec3 n = meanNormal(imageLoad(uNormal, cell).r);
+        vec3 front = vec3(0.0), back = vec3(0.0);
+        for (int d = 0; d < 6; ++d) {
+            float c = dot(vec3(kDirections[d]), n);
+            float toFront = c < -1e-3 ? 1.0 : c > 1e-3 ? 0.0 : 0.5;
+            front += toFront * arriving[d];
+            back += (1.0 - toFront) * arriving[d];
+        }
+        vec3 albedo = uDiffusion.albedoMode == 1 ? vec3(0.5) : unpackUnorm4x8(packedAlbedo).rgb;
+        // A lobe of flux F: F / pi * shCosLobe (its flux is pi times band 0's weight).
+        vec4 lf = shCosLobe(n) / kPi, lb = shCosLobe(-n) / kPi;
+        front *= albedo;
+        back *= albedo;
+        r = front.r * lf + back.r * lb;
+        g = front.g * lf + back.g * lb;
+        b = front.b * lf + back.b * lb;
+    }
+    dst[3 * i] = r;
+    dst[3 * i + 1] = g;
+    dst[3 * i + 2] = b;
+}

@@ -1,0 +1,62 @@
+// Shading (seed 001 section 3.3): per pixel, the accumulated light of the occupied cells among
+// the eight nearest cell centres, trilinear weights renormalised over them (empty cells hold no
+// light: averaging them in would darken every surface). Of those, only cells with an empty face
+// neighbour count: light reaches an occupied cell through such a face only, so a cell without
+// one (where two walls meet, inside thick geometry) holds none, and averaging it in drew a dark
+// line along every edge of a room. None left (a surface the voxelization missed): no indirect
+// light. Irradiance is the clamped cosine lobe against the
+// light's travel direction, shCosLobe(-n), times kDiffusionIrradianceScale, written as E / pi
+// (the indirect term's convention), times intensity.
+#include "diffusion/common.glsl"
+
+layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
+layout(binding = kUnitNormal) uniform sampler2D uNormalG;
+layout(binding = kUnitDepth) uniform sampler2D uDepth;
+layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
+layout(binding = kDiffusionImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
+layout(std430, binding = kDiffusionBufferAccum) readonly buffer Accumulated { vec4 accum[]; };
+
+// Whether light can reach occupied cell c: it has an empty face neighbour inside the grid.
+bool reachable(ivec3 c) {
+    for (int d = 0; d < 6; ++d) {
+        ivec3 n = c + kDirections[d];
+        if (insideGrid(n) && !occupied(imageLoad(uAlbedo, n).r)) return true;
+    }
+    return false;
+}
+
+void main() {
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(uDiffusion.width, uDiffusion.height);
+    if (any(greaterThanEqual(px, size))) return;
+    float depth = texelFetch(uDepth, px, 0).r;
+    vec3 result = vec3(0.0);
+    if (depth < 1.0) {
+        vec2 uv = (vec2(px) + 0.5) / vec2(size);
+        vec4 w = uDiffusion.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+        vec3 p = w.xyz / w.w;
+        vec3 n = normalize(texelFetch(uNormalG, px, 0).xyz);
+        vec3 g = (p - uDiffusion.gridMin.xyz) / uDiffusion.gridMin.w - 0.5;
+        ivec3 base = ivec3(floor(g));
+        vec3 f = g - vec3(base);
+        vec4 r = vec4(0.0), gr = vec4(0.0), b = vec4(0.0);
+        float total = 0.0;
+        for (int k = 0; k < 8; ++k) {
+            ivec3 o = ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+            ivec3 c = base + o;
+            if (!insideGrid(c) || !occupied(imageLoad(uAlbedo, c).r) || !reachable(c)) continue;
+            vec3 t = mix(1.0 - f, f, vec3(o));
+            float weight = t.x * t.y * t.z;
+            int i = 3 * cellIndex(c);
+            r += weight * accum[i];
+            gr += weight * accum[i + 1];
+            b += weight * accum[i + 2];
+            total += weight;
+        }
+        if (total > 0.0) {
+            vec4 lobe = shCosLobe(-n) / total;
+            result = kDiffusionIrradianceScale * max(vec3(dot(r, lobe), dot(gr, lobe), dot(b, lobe)), vec3(0.0));
+        }
+    }
+    imageStore(uIndirect, px, vec4(uDiffusion.intensity * result / kPi, 1.0));
+}
