@@ -115,6 +115,7 @@ void Diffusion::indirect(FrameContext& ctx) {
         glBindTextureUnit(shared::kUnitNormal, ctx.normal);
         glBindTextureUnit(shared::kUnitDepth, ctx.depth);
         glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(shared::kDiffusionImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferAccum, mAccum.id());
         glDispatchCompute(gl::groupCount(ctx.width, shared::kGroup2D), gl::groupCount(ctx.height, shared::kGroup2D), 1);

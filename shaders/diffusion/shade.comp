@@ -3,8 +3,11 @@
 // light: averaging them in would darken every surface). Of those, only cells with an empty face
 // neighbour count: light reaches an occupied cell through such a face only, so a cell without
 // one (where two walls meet, inside thick geometry) holds none, and averaging it in drew a dark
-// line along every edge of a room. None left (a surface the voxelization missed): no indirect
-// light. Irradiance is the clamped cosine lobe against the
+// line along every edge of a room. Where none is left (the point lies in an edge cell, and the
+// other seven are empty: a line half a cell wide along every edge of a room), the reachable
+// face neighbours of the point's own cell whose mean normal is within 60 degrees of the pixel's
+// stand in, alike weighted (the wall's cells beside the edge, not the ceiling's). None of those
+// either (a surface the voxelization missed): no indirect light. Irradiance is the clamped cosine lobe against the
 // light's travel direction, shCosLobe(-n), times kDiffusionIrradianceScale, written as E / pi
 // (the indirect term's convention), times intensity.
 #include "diffusion/common.glsl"
@@ -13,6 +16,7 @@ layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kUnitNormal) uniform sampler2D uNormalG;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
+layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uVoxelNormal;
 layout(binding = kDiffusionImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
 layout(std430, binding = kDiffusionBufferAccum) readonly buffer Accumulated { vec4 accum[]; };
 
@@ -52,6 +56,19 @@ void main() {
             gr += weight * accum[i + 1];
             b += weight * accum[i + 2];
             total += weight;
+        }
+        if (total == 0.0) {
+            ivec3 own = ivec3(floor(g + 0.5));
+            for (int d = 0; d < 6; ++d) {
+                ivec3 c = own + kDirections[d];
+                if (!insideGrid(c) || !occupied(imageLoad(uAlbedo, c).r) || !reachable(c)) continue;
+                if (dot(meanNormal(imageLoad(uVoxelNormal, c).r), n) < 0.5) continue;
+                int i = 3 * cellIndex(c);
+                r += accum[i];
+                gr += accum[i + 1];
+                b += accum[i + 2];
+                total += 1.0;
+            }
         }
         if (total > 0.0) {
             vec4 lobe = shCosLobe(-n) / total;
