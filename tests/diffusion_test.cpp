@@ -6,6 +6,7 @@
 #include "gi/preset/preset.h"
 #include "gi/render/render_settings.h"
 #include "gi/render/renderer.h"
+#include "gi/scene/scene.h"
 #include "gi/util/error.h"
 #include "test_util.h"
 
@@ -183,6 +184,38 @@ TEST_F(DiffusionGL, TheClosedRoomStaysDark) {
     std::printf("indirect: lit room %.5f, closed room %.6f (%.2f %%)\n", lit, dark, 100.0 * dark / lit);
     EXPECT_GT(lit, 0.0);
     EXPECT_LT(dark, 0.05 * lit);
+}
+
+// iterationsPerFrame spreads the solve over frames: the light arrives step by step, the frame
+// after the last step equals the whole solve in one frame, later frames hold it (the same
+// picture, without propagating), a camera move keeps it, and a light change starts it again.
+TEST_F(DiffusionGL, ASolveSpreadOverFramesMatchesTheWholeSolveAndRestartsOnChange) {
+    Scene scene = makeBuiltinScene("cornell");
+    Preset p;
+    p.header.technique.name = "diffusion";
+    p.diffusion.iterations = 24;
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    ASSERT_FALSE(fs.lights.empty());
+    Renderer whole;
+    whole.setScene(scene);
+    const double full = test::meanIndirect(whole, fs);
+
+    fs.diffusion.iterationsPerFrame = 8;
+    Renderer spread;
+    spread.setScene(scene);
+    double frames[4];
+    for (double& f : frames) f = test::meanIndirect(spread, fs);
+    std::printf("mean indirect over frames: %.5f %.5f %.5f, held %.5f; whole solve %.5f\n", frames[0], frames[1], frames[2], frames[3], full);
+    EXPECT_LT(frames[0], frames[1]);
+    EXPECT_LT(frames[1], frames[2]);
+    EXPECT_NEAR(frames[2], full, 1e-4 * full) << "24 steps in three frames of 8";
+    EXPECT_NEAR(frames[3], frames[2], 1e-6 * full) << "held";
+    fs.camera.eye += glm::vec3(0.1f, 0.0f, 0.0f);
+    double moved = test::meanIndirect(spread, fs);
+    EXPECT_GT(moved, 0.9 * frames[2]) << "a camera move keeps the solve";
+    fs.lights[0].intensity *= 0.5f;
+    double restarted = test::meanIndirect(spread, fs);
+    EXPECT_LT(restarted, 0.75 * moved) << "a light change starts again from injection (8 steps, half the light)";
 }
 
 // Settings that would stall the frame are refused before anything is allocated, naming the key.

@@ -5,6 +5,8 @@
 #include "gi/render/render_settings.h"
 #include "gi/util/budget.h"
 
+#include <algorithm>
+
 namespace gi {
 
 namespace {
@@ -33,9 +35,10 @@ size_t Diffusion::estimateBytes(const FrameSettings& fs) {
     return cellsOf(fs.diffusion.gridResolution) * (SurfaceVoxelizer::kBytesPerVoxel + kViewBytesPerCell + kBufferBytesPerCell);
 }
 
-void Diffusion::allocate(const FrameSettings& fs, uint8_t changes) {
+void Diffusion::allocate(const FrameSettings& fs) {
+    // Only the grid's resolution sizes anything here (a Reallocate bit may come from the image's size).
     int res = fs.diffusion.gridResolution;
-    if (!any(Cost(changes), Cost::Reallocate) && res == mResolution) return;
+    if (res == mResolution) return;
     mResolution = res;
     mAlbedo = gl::Texture::create3D(GL_R32UI, res, res, res);
     mNormal = gl::Texture::create3D(GL_R32UI, res, res, res);
@@ -62,9 +65,8 @@ shared::DiffusionParams Diffusion::params(const FrameSettings& fs) const {
 
 void Diffusion::indirect(FrameContext& ctx) {
     const FrameSettings& fs = ctx.settings;
-    allocate(fs, ctx.changes);
+    allocate(fs);
     const int res = mResolution;
-    const GLuint groups = gl::groupCount(res, shared::kGroup3D);
     vct::VCTParams grid{};
     {
         auto pass = ctx.timer.scope("diffusion.voxelize");
@@ -82,11 +84,33 @@ void Diffusion::indirect(FrameContext& ctx) {
             mBox = box;
             mSceneId = ctx.scene.id();
             mVoxelized = true;
+            mStepsDone = -1;  // the solve starts again
         }
     }
     shared::DiffusionParams p = params(fs);
+    // The solve: all iterations every frame (iterationsPerFrame 0), or iterationsPerFrame steps a
+    // frame until all are done, then held until a light, a setting or the scene changes.
+    const DiffusionSettings& s = fs.diffusion;
+    const bool restart = s.iterationsPerFrame == 0 || ctx.changes != 0 || mStepsDone < 0;
     {
         auto pass = ctx.timer.scope("diffusion.inject");
+        if (restart) injectLight(ctx, grid, p);
+    }
+    {
+        auto pass = ctx.timer.scope("diffusion.propagate");
+        if (restart) mStepsDone = 0;
+        int steps = std::min(s.iterationsPerFrame > 0 ? s.iterationsPerFrame : s.iterations, s.iterations - mStepsDone);
+        for (int k = 0; k < steps; ++k, ++mStepsDone)
+            propagateStep(mAlbedo.id(), mNormal.id(), mLight[mStepsDone % 2].id(), mLight[(mStepsDone + 1) % 2].id(), mOutgoing.id(),
+                          mAccum.id(), res, s.bounceAlbedo);
+    }
+    shade(ctx, p);
+    ctx.indirectWritten = true;
+}
+
+void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p) {
+    const GLuint groups = gl::groupCount(mResolution, shared::kGroup3D);
+    {
         mSurfaces.inject(ctx, grid, mAlbedo.id(), mNormal.id(), mExitFront.id(), mExitBack.id());
         mInitProg.use();
         mBlock.set(p);
@@ -99,12 +123,10 @@ void Diffusion::indirect(FrameContext& ctx) {
         glDispatchCompute(groups, groups, groups);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    {
-        auto pass = ctx.timer.scope("diffusion.propagate");
-        for (int step = 0; step < fs.diffusion.iterations; ++step)
-            propagateStep(mAlbedo.id(), mNormal.id(), mLight[step % 2].id(), mLight[(step + 1) % 2].id(), mOutgoing.id(), mAccum.id(), res,
-                          fs.diffusion.bounceAlbedo);
-    }
+}
+
+void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
+    const GLuint groups = gl::groupCount(mResolution, shared::kGroup3D);
     {
         auto pass = ctx.timer.scope("diffusion.shade");
         p.invViewProj = ctx.invViewProj;
@@ -125,7 +147,6 @@ void Diffusion::indirect(FrameContext& ctx) {
         glDispatchCompute(groups, groups, groups);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    ctx.indirectWritten = true;
 }
 
 void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuint destination, GLuint outgoing, GLuint accum, int res,

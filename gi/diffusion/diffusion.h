@@ -34,8 +34,12 @@
 //     on the other.
 //   - Units: the buffers carry flux per unit of surface area (a side leaving radiance L emits pi
 //     L); the cell size cancels between injection and shading.
-// Not here yet (issue 16): the amortised update over frames, slicing voxelization, the bounce
-// count per cell, the sky. Light diffuses rather than travels straight:
+// Update rate (seed 001 section 4, "decoupled"): with iterationsPerFrame > 0 the solve runs
+// that many steps a frame, the picture filling in over frames, and once all `iterations` are
+// done it is held (a frame then costs the shading alone) until ctx.changes reports a change of
+// a light or a setting, or the scene changes, which restarts it from injection. Camera moves
+// keep it. 0 solves everything every frame (fully dynamic lights and the default).
+// Not here yet (issue 16): slicing voxelization, the bounce count per cell, the sky. Light diffuses rather than travels straight:
 // seed 001's "n Y steps for n bounces" describes only the front of it.
 #pragma once
 
@@ -90,8 +94,11 @@ private:
     bool mVoxelized = false;
     size_t mVoxelBytes = 0, mBufferBytes = 0;
 
-    void allocate(const FrameSettings& fs, uint8_t changes);
+    int mStepsDone = -1;  // propagation steps of the current solve; -1: none started
+    void allocate(const FrameSettings& fs);
     shared::DiffusionParams params(const FrameSettings& fs) const;
+    void injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p);
+    void shade(FrameContext& ctx, shared::DiffusionParams p);
 };
 
 }  // namespace gi

@@ -23,6 +23,7 @@ struct DiffusionSettings {
     static void checkTime(const FrameSettings& fs);
     int gridResolution = 32;       // cells per side of the grid, which holds the scene's bounding cube
     int iterations = 64;           // propagation steps; light moves at most one cell per step and bounces where it meets a surface
+    int iterationsPerFrame = 0;    // steps a frame, the solve spread over frames and then held until a change; 0: all every frame
     DiffusionAlbedo bounceAlbedo = DiffusionAlbedo::Voxel;  // the voxel's own albedo, or seed 001's constant 0.5
     float intensity = 1.0f;        // scale of the indirect light
 
@@ -30,6 +31,7 @@ struct DiffusionSettings {
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Cells per side of the grid (the scene's bounding cube)", "cells", 8, 128, Cost::Reallocate, 1});
         v(iterations, {"iterations", "Propagation steps (light moves one cell per step; bounces happen on the way)", "", 0, 1024});
+        v(iterationsPerFrame, {"iterationsPerFrame", "Steps a frame: the solve spreads over frames, then holds until a light, setting or the scene changes (0: all every frame)", "", 0, 1024});
         v(bounceAlbedo, {"bounceAlbedo", "Albedo of the light a surface reflects: the voxel's own (voxel) or seed 001's 0.5 (half)"});
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
     }
