@@ -174,9 +174,7 @@ TEST_F(DiffusionGL, TheClosedRoomStaysDark) {
     FrameSettings fs = frameSettings(p, scene, 96, 64);
     Renderer r;
     r.setScene(scene);
-    fs.camera.eye = {1.9f, 1.0f, 0.0f};
-    fs.camera.target = {0.0f, 0.8f, 0.0f};
-    fs.camera.fovY = 70.0f;
+    test::lookIntoClosedRoom(fs.camera);
     double dark = test::meanIndirect(r, fs);
     fs.camera.eye = {-0.1f, 1.0f, 0.0f};
     fs.camera.target = {-2.0f, 0.8f, 0.0f};

@@ -177,9 +177,7 @@ TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
     Renderer r;
     r.setScene(scene);
     // Looking into room B from its outer wall.
-    fs.camera.eye = {1.9f, 1.0f, 0.0f};
-    fs.camera.target = {0.0f, 0.8f, 0.0f};
-    fs.camera.fovY = 70.0f;
+    test::lookIntoClosedRoom(fs.camera);
     fs.lpv.occlusion = false;
     double leakOpen = test::meanIndirect(r, fs);
     fs.lpv.occlusion = true;

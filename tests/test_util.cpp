@@ -62,6 +62,12 @@ Scene twoRooms() {
     return s;
 }
 
+void lookIntoClosedRoom(CameraSettings& camera) {
+    camera.eye = {1.9f, 1.0f, 0.0f};
+    camera.target = {0.0f, 0.8f, 0.0f};
+    camera.fovY = 70.0f;
+}
+
 Scene openFloor() {
     Scene s;
     MeshBuilder b(s);

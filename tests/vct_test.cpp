@@ -441,9 +441,7 @@ TEST_F(VCTGL, TwoRoomLeak) {
     FrameSettings fs = frameSettings(p, scene, 96, 64);
     Renderer r;
     r.setScene(scene);
-    fs.camera.eye = {1.9f, 1.0f, 0.0f};
-    fs.camera.target = {0.0f, 0.8f, 0.0f};
-    fs.camera.fovY = 70.0f;
+    test::lookIntoClosedRoom(fs.camera);
     double leakIsotropic = test::meanIndirect(r, fs);
     fs.vct.sh = true;
     double leakSH = test::meanIndirect(r, fs);

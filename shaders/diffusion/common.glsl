@@ -1,7 +1,8 @@
-// Shared by the diffusion passes: cell indexing, the surface voxels' encoding (as VCT writes
-// them, shaders/vct/common.glsl) and the face transfer lobe.
+// Shared by the diffusion passes: cell indexing, the mean normal and the face transfer lobe; the
+// surface voxels' encoding is VCT's (vct/voxel_encoding.glsl).
 #include "diffusion/diffusion_shared.h"
 #include "common/sh.h"
+#include "vct/voxel_encoding.glsl"
 
 // +x -x +y -y +z -z: the order of the outgoing buffer's six faces.
 const ivec3 kDirections[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0), ivec3(0, 0, 1), ivec3(0, 0, -1));
@@ -9,11 +10,10 @@ const ivec3 kDirections[6] = ivec3[6](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 
 int cellIndex(ivec3 c) { return (c.z * uDiffusion.resolution + c.y) * uDiffusion.resolution + c.x; }
 bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uDiffusion.resolution))); }
 
-bool occupied(uint packedAlbedo) { return (packedAlbedo >> 24) != 0u; }
-// The mean normal (not unit: its length falls where the normals in a cell disagree; zero when
-// they cancel, and the cell then reflects to both sides alike).
+// The mean normal, unit length; zero where the normals in a cell cancel (the running average is
+// shorter than 1e-3), and the cell then reflects to both sides alike.
 vec3 meanNormal(uint packedNormal) {
-    vec3 n = unpackUnorm4x8(packedNormal).xyz * 2.0 - 1.0;
+    vec3 n = unpackVoxel(packedNormal).xyz * 2.0 - 1.0;
     float l = length(n);
     return l > 1e-3 ? n / l : vec3(0.0);
 }

@@ -51,7 +51,7 @@ void main() {
             front += toFront * arriving[d];
             back += (1.0 - toFront) * arriving[d];
         }
-        vec3 albedo = uDiffusion.albedoMode == 1 ? vec3(0.5) : unpackUnorm4x8(packedAlbedo).rgb;
+        vec3 albedo = uDiffusion.albedoMode == 1 ? vec3(0.5) : unpackVoxel(packedAlbedo).rgb;
         // A lobe of flux F: F / pi * shCosLobe (its flux is pi times band 0's weight).
         vec4 lf = shCosLobe(n) / kPi, lb = shCosLobe(-n) / kPi;
         front *= albedo;

@@ -6,7 +6,4 @@
 bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uVCT.resolution))); }
 ivec3 texelOf(ivec3 voxel) { return (voxel + uVCT.wrapOffset.xyz) % uVCT.resolution; }
 vec3 voxelCentre(ivec3 voxel) { return uVCT.gridMin.xyz + (vec3(voxel) + 0.5) * uVCT.cellSize; }
-
-// rgb of an RGBA8-in-r32ui running average, and whether anything was written there.
-vec4 unpackVoxel(uint v) { return unpackUnorm4x8(v); }
-bool occupied(uint v) { return (v >> 24) != 0u; }
+#include "vct/voxel_encoding.glsl"
