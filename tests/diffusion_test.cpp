@@ -3,6 +3,9 @@
 #include "common/sh.h"
 #include "diffusion/diffusion_shared.h"
 #include "gi/diffusion/diffusion.h"
+#include "gi/metrics/metrics.h"
+#include "gi/reference/reference_cache.h"
+#include "gi/scene/mesh_builder.h"
 #include "gi/preset/preset.h"
 #include "gi/render/render_settings.h"
 #include "gi/render/renderer.h"
@@ -15,6 +18,7 @@
 
 #include <cmath>
 #include <functional>
+#include <queue>
 
 namespace gi {
 namespace {
@@ -53,6 +57,7 @@ double flux(const std::vector<float>& sh, const std::function<bool(size_t)>& kee
 
 struct Result {
     std::vector<float> light, accum;  // the last step's light in flight, and the accumulation
+    std::vector<float> order;         // the accumulated bounce order times flux, per cell
 };
 
 Result propagate(Diffusion& d, const Grid& g, int steps, DiffusionAlbedo mode = DiffusionAlbedo::Voxel) {
@@ -69,13 +74,15 @@ Result propagate(Diffusion& d, const Grid& g, int steps, DiffusionAlbedo mode = 
     gl::Buffer accum = gl::createBuffer(floats * 4, zeros.data(), GL_DYNAMIC_STORAGE_BIT);
     gl::Buffer outgoing = gl::createBuffer(g.cells() * 6 * 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
     GLuint from = a.id(), to = b.id();
+    d.resetBounceOrders(g.res);
     for (int s = 0; s < steps; ++s) {
         d.propagateStep(albedo.id(), normal.id(), from, to, outgoing.id(), accum.id(), g.res, mode);
         std::swap(from, to);
     }
-    Result r{std::vector<float>(floats), std::vector<float>(floats)};
+    Result r{std::vector<float>(floats), std::vector<float>(floats), std::vector<float>(g.cells())};
     glGetNamedBufferSubData(from, 0, GLsizeiptr(floats * 4), r.light.data());
     glGetNamedBufferSubData(accum.id(), 0, GLsizeiptr(floats * 4), r.accum.data());
+    glGetNamedBufferSubData(d.accumulatedOrder().id(), 0, GLsizeiptr(g.cells() * 4), r.order.data());
     return r;
 }
 
@@ -152,12 +159,24 @@ TEST_F(DiffusionGL, InAClosedBoxEachBounceCarriesTheAlbedoTimesTheOneBefore) {
     std::printf("black walls: absorbed %.5f, in flight %.2e\n", flux(once.accum), inFlight);
     EXPECT_LT(inFlight, 1e-3) << "converged";
     EXPECT_NEAR(flux(once.accum), 1.0, 2e-3) << "all of it, once";
+    // The bounce orders (the diffusion.bounces view): the flux-weighted mean order of the light
+    // arrived. Black walls: first-bounce light only, order 1 exactly.
+    auto meanOrder = [](const Result& r) {
+        double weighted = 0.0;
+        for (float o : r.order) weighted += o;
+        return weighted / (3.0 * flux(r.accum));  // the order sums flux over the three colours
+    };
+    EXPECT_NEAR(meanOrder(once), 1.0, 1e-4);
 
     Grid grey = box(glm::vec3(0.6f));  // the albedo volume is not read with `half`
     Result half = propagate(d, grey, 600, DiffusionAlbedo::Half);
     double arrived = flux(half.accum);
     std::printf("albedo 0.5: arrived %.5f (1 / (1 - 0.5) = 2), in flight %.2e\n", arrived, flux(half.light));
     EXPECT_NEAR(arrived, 2.0, 0.05 * 1.0) << "the bounces after the first sum to the first times 0.5 / (1 - 0.5), within 5 %";
+    // Bounce k carries 0.5^(k - 1) of the first, so the mean order is sum k 0.5^(k-1) / sum
+    // 0.5^(k-1) = 1 / (1 - 0.5) = 2: with the total above, each bounce is half the one before.
+    std::printf("albedo 0.5: mean bounce order of the light arrived %.5f (2)\n", meanOrder(half));
+    EXPECT_NEAR(meanOrder(half), 2.0, 0.05 * 1.0);
     Result voxel = propagate(d, grey, 600, DiffusionAlbedo::Voxel);
     std::printf("albedo 0.6 (voxel): arrived %.5f (1 / (1 - 0.6) = 2.5)\n", flux(voxel.accum));
     EXPECT_NEAR(flux(voxel.accum), 2.5, 0.05 * 1.5);
@@ -214,6 +233,130 @@ TEST_F(DiffusionGL, ASolveSpreadOverFramesMatchesTheWholeSolveAndRestartsOnChang
     fs.lights[0].intensity *= 0.5f;
     double restarted = test::meanIndirect(spread, fs);
     EXPECT_LT(restarted, 0.75 * moved) << "a light change starts again from injection (8 steps, half the light)";
+}
+
+const Diffusion& diffusionOf(const Renderer& r) {
+    const Diffusion* d = dynamic_cast<const Diffusion*>(r.technique());
+    if (!d) throw Error("the renderer holds no diffusion pass");
+    return *d;
+}
+
+// The occupancy of the renderer's diffusion grid, one bool per cell (x fastest).
+std::vector<bool> occupancy(const Renderer& r) {
+    const Diffusion& d = diffusionOf(r);
+    int res = d.resolution();
+    std::vector<uint32_t> packed(size_t(res) * res * res);
+    glGetTextureImage(d.albedoVolume().id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(packed.size() * 4), packed.data());
+    std::vector<bool> solid(packed.size());
+    for (size_t i = 0; i < packed.size(); ++i) solid[i] = (packed[i] >> 24) != 0u;
+    return solid;
+}
+
+// Seed 001's slicing (voxelization = slicing): three draws, one along each axis, merged. On a
+// panel tilted against every axis it must leave no face-connected gap, since light moves
+// between empty cells through faces: empty cells flood-filled from above the panel never reach
+// the cell below it. Every cell it marks is one the conservative voxelizer marks too (that one
+// grows triangles by half a pixel), and it marks most of them.
+TEST_F(DiffusionGL, SlicingAlongThreeAxesLeavesNoGapInATiltedPanel) {
+    Scene scene;
+    MeshBuilder b(scene);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    // y = 0.5 x + 0.3 z over x, z in [-1, 1]: tilted about two axes.
+    b.quad(white, {-1.0f, -0.8f, -1.0f}, {2.0f, 1.0f, 0.0f}, {0.0f, 0.6f, 2.0f});
+    scene.finalize();
+    Preset p;
+    p.header.technique.name = "diffusion";
+    p.diffusion.iterations = 1;
+    p.diffusion.voxelization = DiffusionVoxelization::Conservative;
+    FrameSettings fs = frameSettings(p, scene, 32, 32);
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    const std::vector<bool> conservative = occupancy(r);
+    fs.diffusion.voxelization = DiffusionVoxelization::Slicing;
+    r.render(fs);
+    const std::vector<bool> sliced = occupancy(r);
+    const int res = diffusionOf(r).resolution();
+    size_t both = 0, slicedCount = 0, conservativeCount = 0;
+    for (size_t i = 0; i < sliced.size(); ++i) {
+        slicedCount += sliced[i];
+        conservativeCount += conservative[i];
+        both += sliced[i] && conservative[i];
+    }
+    std::printf("tilted panel at %d^3: conservative %zu cells, slicing %zu, both %zu\n", res, conservativeCount, slicedCount, both);
+    EXPECT_EQ(both, slicedCount) << "slicing marks a cell the conservative voxelizer does not";
+    EXPECT_GT(double(slicedCount), 0.5 * double(conservativeCount));
+    EXPECT_LT(slicedCount, conservativeCount) << "the conservative voxelizer grows triangles; slicing does not";
+    // Flood fill the empty cells from above the panel's centre, inside the panel's span (two
+    // cells in from the grid's sides, where light could go round it).
+    const glm::vec3 lo = diffusionOf(r).box().min;
+    const float cell = diffusionOf(r).box().cellSize;
+    auto cellOf = [&](glm::vec3 w) { return glm::ivec3(glm::floor((w - lo) / cell)); };
+    auto index = [&](glm::ivec3 c) { return size_t((c.z * res + c.y) * res + c.x); };
+    auto inside = [&](glm::ivec3 c) { return c.x >= 2 && c.z >= 2 && c.x < res - 2 && c.z < res - 2 && c.y >= 0 && c.y < res; };
+    for (const std::vector<bool>* solid : {&conservative, &sliced}) {
+        std::vector<bool> seen(solid->size(), false);
+        std::queue<glm::ivec3> todo;
+        glm::ivec3 start = cellOf({0.0f, 0.5f, 0.0f}), goal = cellOf({0.0f, -0.5f, 0.0f});
+        ASSERT_FALSE((*solid)[index(start)]);
+        todo.push(start);
+        seen[index(start)] = true;
+        while (!todo.empty()) {
+            glm::ivec3 c = todo.front();
+            todo.pop();
+            for (int a = 0; a < 3; ++a)
+                for (int s : {-1, 1}) {
+                    glm::ivec3 n = c;
+                    n[a] += s;
+                    if (!inside(n) || seen[index(n)] || (*solid)[index(n)]) continue;
+                    seen[index(n)] = true;
+                    todo.push(n);
+                }
+        }
+        EXPECT_FALSE(seen[index(goal)]) << (solid == &sliced ? "slicing" : "conservative") << ": empty cells go through the panel";
+    }
+}
+
+// Multiple bounces on a closed Cornell box (the classic room with a front wall, the camera
+// inside): each doubling of the iterations carries more light, and the indirect light and the
+// picture come closer to the path tracer's as the bounces add up. Prints SSIM against iterations.
+TEST_F(DiffusionGL, MoreIterationsCarryMoreBouncesTowardsTheReference) {
+    Scene scene = makeBuiltinScene("cornell");
+    MeshBuilder b(scene);
+    int white = 0;
+    while (scene.materials[size_t(white)].name != "white") ++white;
+    b.quad(white, {1, 0, 1}, {-2, 0, 0}, {0, 2, 0});  // front wall, facing -z
+    scene.finalize();
+    Preset p;
+    p.header.technique.name = "diffusion";
+    FrameSettings fs = frameSettings(p, scene, 64, 64);
+    fs.camera.eye = {0.0f, 1.0f, 0.97f};
+    fs.camera.target = {0.0f, 0.9f, 0.0f};
+    fs.camera.fovY = 75.0f;
+    ReferenceSettings rs;
+    rs.spp = 128;
+    CachedReference full = cachedReference(scene, fs, rs);
+    rs.mode = ReferenceMode::Indirect;
+    CachedReference indirectRef = cachedReference(scene, fs, rs);
+    const double refIndirect = meanLuminance(indirectRef.image);
+    Renderer r;
+    r.setScene(scene);
+    std::vector<double> mean, ssim;
+    const std::vector<int> counts = {8, 16, 32, 64, 128, 256};
+    for (int n : counts) {
+        fs.diffusion.iterations = n;
+        r.render(fs);
+        ImageRGB image = imageFromGL(fs.width, fs.height, r.readHDR());
+        ImageRGB indirect = imageFromGL(fs.width, fs.height, r.readIndirectRadiance());
+        Metrics m = scoreRender({&image, &full.image, &indirect, &indirectRef.image, fs.toneMap});
+        mean.push_back(meanLuminance(indirect));
+        ssim.push_back(m.ssim);
+        std::printf("iterations %3d: mean indirect %.5f (%.2f of the reference's %.5f), ssim %.4f\n", n, mean.back(),
+                    mean.back() / refIndirect, refIndirect, m.ssim);
+    }
+    for (size_t i = 1; i < counts.size(); ++i) EXPECT_GT(mean[i], mean[i - 1]) << counts[i] << " against " << counts[i - 1] << " iterations";
+    EXPECT_LT(std::abs(mean.back() / refIndirect - 1.0), std::abs(mean.front() / refIndirect - 1.0));
+    EXPECT_GT(ssim.back(), ssim.front());
 }
 
 // Settings that would stall the frame are refused before anything is allocated, naming the key.

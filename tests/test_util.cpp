@@ -39,33 +39,13 @@ std::filesystem::path tempDir() {
     return dir;
 }
 
-Scene twoRooms() {
-    Scene s;
-    MeshBuilder b(s);
-    int white = b.material("white", glm::vec3(0.8f), 1.0f);
-    b.quad(white, {-2, 0, 1}, {4, 0, 0}, {0, 0, -2});    // floor
-    b.quad(white, {-2, 2, -1}, {4, 0, 0}, {0, 0, 2});    // ceiling
-    b.quad(white, {-2, 0, -1}, {4, 0, 0}, {0, 2, 0});    // back
-    b.quad(white, {2, 0, 1}, {-4, 0, 0}, {0, 2, 0});     // front
-    b.quad(white, {-2, 0, 1}, {0, 0, -2}, {0, 2, 0});    // outer wall of A
-    b.quad(white, {2, 0, -1}, {0, 0, 2}, {0, 2, 0});     // outer wall of B
-    b.quad(white, {0, 0, -1}, {0, 0, 2}, {0, 2, 0});     // the shared thin wall
-    LightSettings spot;
-    spot.type = LightType::Spot;
-    spot.position = {-1.8f, 1.8f, 0.0f};
-    spot.direction = glm::normalize(glm::vec3(1.0f, -0.6f, 0.0f));
-    spot.intensity = 20.0f;
-    spot.innerConeDeg = 50.0f;
-    spot.outerConeDeg = 70.0f;
-    s.lights.push_back(spot);
-    s.finalize();
-    return s;
-}
+Scene twoRooms() { return makeBuiltinScene("two_rooms"); }
 
 void lookIntoClosedRoom(CameraSettings& camera) {
-    camera.eye = {1.9f, 1.0f, 0.0f};
-    camera.target = {0.0f, 0.8f, 0.0f};
-    camera.fovY = 70.0f;
+    const CameraSettings& closed = makeBuiltinScene("two_rooms").cameras[1];
+    camera.eye = closed.eye;
+    camera.target = closed.target;
+    camera.fovY = closed.fovY;
 }
 
 Scene openFloor() {

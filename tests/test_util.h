@@ -24,11 +24,11 @@ struct CommandResult {
 };
 CommandResult runCommand(const std::string& command);
 
-// Two rooms side by side, sharing one thin wall at x = 0. A spot light lights room A (x < 0);
-// room B (x > 0) is closed, so in the reference it is dark.
+// The built-in two_rooms scene (gi/scene/scene.cpp): two rooms sharing one thin wall at x = 0,
+// a spot light in room A (x < 0), room B (x > 0) closed and so dark in the reference.
 Scene twoRooms();
-// twoRooms()'s closed room B seen from its outer wall (eye, target, 70 degree field of view):
-// the view the leak tests average the indirect light of.
+// Its closed room B seen from its outer wall (the scene's camera 1: eye, target, 70 degree
+// field of view): the view the leak tests average the indirect light of.
 void lookIntoClosedRoom(CameraSettings& camera);
 // The sky tests: a 4 x 4 m floor of albedo 0.8 on its own, the same floor inside a closed box
 // 1 m high, and a frame of `technique` looking straight down at the floor's centre from 0.6 m,

@@ -12,9 +12,10 @@ namespace gi {
 namespace {
 
 size_t cellsOf(int res) { return size_t(res) * size_t(res) * size_t(res); }
-// Light in flight twice (ping-pong), the accumulation: 3 vec4 each; outgoing faces: 6 vec4.
-constexpr size_t kBufferBytesPerCell = (3 * 16) * 3 + 6 * 16;
-constexpr size_t kViewBytesPerCell = 8;  // the accumulation's RGBA16F view
+// Light in flight twice (ping-pong), the accumulation: 3 vec4 each; outgoing faces: 6 vec4;
+// bounce orders in flight (twice) and accumulated: a float each.
+constexpr size_t kBufferBytesPerCell = (3 * 16) * 3 + 6 * 16 + 3 * 4;
+constexpr size_t kViewBytesPerCell = 3 * 8;  // the RGBA16F views: accumulated, in flight, bounces
 // Cell-steps a second for the time budget: llvmpipe on two cores ran 32^3 x 64 steps in 0.48 s
 // (4.4e6/s); a GPU is far faster, so this refuses only what would stall a CPU renderer.
 constexpr double kCellStepsPerSecond = 4e6;
@@ -45,13 +46,36 @@ void Diffusion::allocate(const FrameSettings& fs) {
     mExitFront = gl::Texture::create3D(SurfaceVoxelizer::kExitFormat, res, res, res);
     mExitBack = gl::Texture::create3D(SurfaceVoxelizer::kExitFormat, res, res, res);
     mView = gl::Texture::create3D(GL_RGBA16F, res, res, res);
+    mViewInFlight = gl::Texture::create3D(GL_RGBA16F, res, res, res);
+    mViewBounces = gl::Texture::create3D(GL_RGBA16F, res, res, res);
     size_t cells = cellsOf(res);
     for (auto& b : mLight) b = gl::createBuffer(cells * 3 * 16, nullptr, 0);
     mAccum = gl::createBuffer(cells * 3 * 16, nullptr, 0);
     mOutgoing = gl::createBuffer(cells * 6 * 16, nullptr, 0);
-    mVoxelBytes = mAlbedo.bytes() + mNormal.bytes() + mExitFront.bytes() + mExitBack.bytes() + mView.bytes();
+    ensureOrderBuffers(res);
+    mVoxelBytes = mAlbedo.bytes() + mNormal.bytes() + mExitFront.bytes() + mExitBack.bytes() + mView.bytes() + mViewInFlight.bytes() +
+                  mViewBounces.bytes();
     mBufferBytes = cells * kBufferBytesPerCell;
     mVoxelized = false;
+}
+
+void Diffusion::ensureOrderBuffers(int res) {
+    if (res == mOrderResolution) return;
+    mOrderResolution = res;
+    size_t bytes = cellsOf(res) * 4;
+    for (gl::Buffer* b : {&mOrder[0], &mOrder[1], &mOrderAccum}) {
+        *b = gl::createBuffer(bytes, nullptr, 0);
+        glClearNamedBufferData(b->id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
+    }
+    mOrderParity = 0;
+}
+
+void Diffusion::resetBounceOrders(int res) {
+    ensureOrderBuffers(res);
+    const float one = 1.0f;
+    for (gl::Buffer* b : {&mOrder[0], &mOrder[1]}) glClearNamedBufferData(b->id(), GL_R32F, GL_RED, GL_FLOAT, &one);
+    glClearNamedBufferData(mOrderAccum.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
+    mOrderParity = 0;
 }
 
 shared::DiffusionParams Diffusion::params(const FrameSettings& fs) const {
@@ -60,6 +84,7 @@ shared::DiffusionParams Diffusion::params(const FrameSettings& fs) const {
     p.resolution = mResolution;
     p.albedoMode = fs.diffusion.bounceAlbedo == DiffusionAlbedo::Half ? 1 : 0;
     p.intensity = fs.diffusion.intensity;
+    p.nudge = fs.diffusion.nudge;
     return p;
 }
 
@@ -79,8 +104,11 @@ void Diffusion::indirect(FrameContext& ctx) {
         grid.gridMin = glm::vec4(box.min, 0.0f);
         grid.cellSize = box.cellSize;
         bool newScene = ctx.scene.id() != mSceneId;
-        if (!mVoxelized || newScene || box.min != mBox.min || box.cellSize != mBox.cellSize) {
-            mSurfaces.voxelize(ctx, grid, mAlbedo.id(), mNormal.id(), glm::ivec3(0), glm::ivec3(res));
+        const DiffusionVoxelization mode = fs.diffusion.voxelization;
+        if (!mVoxelized || newScene || box.min != mBox.min || box.cellSize != mBox.cellSize || mode != mVoxelizedWith) {
+            mSurfaces.voxelize(ctx, grid, mAlbedo.id(), mNormal.id(), glm::ivec3(0), glm::ivec3(res),
+                               mode == DiffusionVoxelization::Slicing);
+            mVoxelizedWith = mode;
             mBox = box;
             mSceneId = ctx.scene.id();
             mVoxelized = true;
@@ -120,6 +148,9 @@ void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid,
         glBindImageTexture(shared::kDiffusionImageExitBack, mExitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, SurfaceVoxelizer::kExitFormat);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferDestination, mLight[0].id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferAccum, mAccum.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderDestination, mOrder[0].id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());
+        mOrderParity = 0;
         glDispatchCompute(groups, groups, groups);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
@@ -144,6 +175,11 @@ void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         mResolveProg.use();
         glBindImageTexture(shared::kDiffusionImageView, mView.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(shared::kDiffusionImageViewInFlight, mViewInFlight.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(shared::kDiffusionImageViewBounces, mViewBounces.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        // The light in flight after the last step: step k writes mLight[(k + 1) % 2].
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferSource, mLight[std::max(mStepsDone, 0) % 2].id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());
         glDispatchCompute(groups, groups, groups);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
@@ -155,6 +191,11 @@ void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuin
     p.resolution = res;
     p.albedoMode = albedoMode == DiffusionAlbedo::Half ? 1 : 0;
     const GLuint groups = gl::groupCount(res, shared::kGroup3D);
+    ensureOrderBuffers(res);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderSource, mOrder[mOrderParity].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderDestination, mOrder[1 - mOrderParity].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());
+    mOrderParity = 1 - mOrderParity;
     mBlock.set(p);
     glBindImageTexture(shared::kDiffusionImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(shared::kDiffusionImageNormal, normal, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
@@ -174,7 +215,9 @@ std::vector<DebugView> Diffusion::debugViews() const {
     int r = mResolution;
     return {{"diffusion.occupancy", mAlbedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1},
             {"diffusion.normal", mNormal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1},
-            {"diffusion.accumulated", mView.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1}};
+            {"diffusion.accumulated", mView.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1},
+            {"diffusion.inFlight", mViewInFlight.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1},
+            {"diffusion.bounces", mViewBounces.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1}};
 }
 
 size_t Diffusion::passMemory(const std::string& pass) const {
@@ -194,7 +237,8 @@ std::vector<VolumeMemory> Diffusion::volumeMemory() const {
             {"light", r + "3 x vec4 SH x 2 (ping-pong)", 2 * cells * 3 * 16},
             {"outgoing", r + "6 x vec4 (flux per face)", cells * 6 * 16},
             {"accumulated", r + "3 x vec4 SH", cells * 3 * 16},
-            {"accumulatedView", r + "RGBA16F", mView.bytes()}};
+            {"bounceOrder", r + "float x 3 (in flight x 2, accumulated)", cells * 3 * 4},
+            {"views", r + "RGBA16F x 3 (accumulated, in flight, bounces)", mView.bytes() + mViewInFlight.bytes() + mViewBounces.bytes()}};
 }
 
 std::vector<std::string> Diffusion::passNames(const FrameSettings&) const {

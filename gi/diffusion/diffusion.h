@@ -39,7 +39,15 @@
 // done it is held (a frame then costs the shading alone) until ctx.changes reports a change of
 // a light or a setting, or the scene changes, which restarts it from injection. Camera moves
 // keep it. 0 solves everything every frame (fully dynamic lights and the default).
-// Not here yet (issue 16): slicing voxelization, the bounce count per cell, the sky. Light diffuses rather than travels straight:
+// Voxelization modes (setting voxelization): VCT's one draw along each triangle's dominant axis,
+// grown for conservative rasterization, or seed 001's slicing: three draws, along x, y and z,
+// not grown, each fragment writing the one cell its depth falls in; the three merge into the
+// same volumes (occupancy is their union, MAX of the indicator as the seed merges; albedo and
+// normal are averaged over the fragments of all three, since a MAX of encoded normals is no
+// normal).
+// Bounce orders: the light carries the flux-weighted mean number of reflections it has had
+// (1 for reflected direct light), shown per cell by the diffusion.bounces view.
+// Not here yet (issue 16): the sky. Light diffuses rather than travels straight:
 // seed 001's "n Y steps for n bounces" describes only the front of it.
 #pragma once
 
@@ -74,10 +82,17 @@ public:
     void propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuint destination, GLuint outgoing, GLuint accum, int res,
                        DiffusionAlbedo albedoMode);
 
+    // Starts the bounce orders of propagateStep() at res afresh (tests): the light in flight is
+    // order 1, nothing accumulated.
+    void resetBounceOrders(int res);
+
     int resolution() const { return mResolution; }
     const VoxelBox& box() const { return mBox; }
     // The accumulated light, 3 vec4 (R, G, B SH) per cell, and the volumes it was made with.
     const gl::Buffer& accumulated() const { return mAccum; }
+    // The flux-weighted bounce order summed over the accumulation, one float per cell (orders
+    // times flux; divide by the accumulation's flux, 2 sqrt(pi) times band 0 summed over colours).
+    const gl::Buffer& accumulatedOrder() const { return mOrderAccum; }
     const gl::Texture& albedoVolume() const { return mAlbedo; }
     int voxelizationCount() const { return mSurfaces.voxelizationCount(); }
 
@@ -87,7 +102,13 @@ private:
     gl::UniformBlock<shared::DiffusionParams> mBlock;
     gl::Texture mAlbedo, mNormal, mExitFront, mExitBack;
     gl::Texture mView;  // the accumulation, RGBA16F (diffusion.accumulated)
+    gl::Texture mViewInFlight, mViewBounces;  // diffusion.inFlight, diffusion.bounces
     gl::Buffer mLight[2], mOutgoing, mAccum;
+    // Bounce orders (diffusion_shared.h): in flight, ping-pong beside the light, and accumulated;
+    // sized by ensureOrderBuffers() for the resolution a step runs at.
+    gl::Buffer mOrder[2], mOrderAccum;
+    int mOrderResolution = 0, mOrderParity = 0;
+    DiffusionVoxelization mVoxelizedWith = DiffusionVoxelization::Conservative;
     VoxelBox mBox;
     int mResolution = 0;
     uint64_t mSceneId = 0;
@@ -96,6 +117,7 @@ private:
 
     int mStepsDone = -1;  // propagation steps of the current solve; -1: none started
     void allocate(const FrameSettings& fs);
+    void ensureOrderBuffers(int res);
     shared::DiffusionParams params(const FrameSettings& fs) const;
     void injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p);
     void shade(FrameContext& ctx, shared::DiffusionParams p);

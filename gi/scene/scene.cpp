@@ -161,9 +161,45 @@ Scene makeSpheres() {
     return s;
 }
 
+// The leak scene: two rooms 2 x 2 x 2 m side by side, sharing one thin wall (a single quad) at
+// x = 0. A spot light lights room A (x < 0); room B (x > 0) is closed, so in the reference it is
+// dark and whatever indirect light a technique puts there has leaked through the wall. Camera 0
+// looks at the shared wall from room A, camera 1 into room B from its outer wall.
+Scene makeTwoRooms() {
+    Scene s;
+    s.name = "two_rooms";
+    MeshBuilder b(s);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    b.quad(white, {-2, 0, 1}, {4, 0, 0}, {0, 0, -2});    // floor
+    b.quad(white, {-2, 2, -1}, {4, 0, 0}, {0, 0, 2});    // ceiling
+    b.quad(white, {-2, 0, -1}, {4, 0, 0}, {0, 2, 0});    // back
+    b.quad(white, {2, 0, 1}, {-4, 0, 0}, {0, 2, 0});     // front
+    b.quad(white, {-2, 0, 1}, {0, 0, -2}, {0, 2, 0});    // outer wall of A
+    b.quad(white, {2, 0, -1}, {0, 0, 2}, {0, 2, 0});     // outer wall of B
+    b.quad(white, {0, 0, -1}, {0, 0, 2}, {0, 2, 0});     // the shared thin wall
+    LightSettings spot;
+    spot.type = LightType::Spot;
+    spot.position = {-1.8f, 1.8f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(1.0f, -0.6f, 0.0f));
+    spot.intensity = 20.0f;
+    spot.innerConeDeg = 50.0f;
+    spot.outerConeDeg = 70.0f;
+    s.lights.push_back(spot);
+    CameraSettings lit, closed;
+    lit.eye = {-1.9f, 1.0f, 0.0f};
+    lit.target = {0.0f, 0.8f, 0.0f};
+    lit.fovY = 70.0f;
+    closed = lit;
+    closed.eye = {1.9f, 1.0f, 0.0f};
+    s.cameras = {lit, closed};
+    s.cameraNames = {"the lit room, facing the shared wall", "the closed room, facing the shared wall"};
+    s.finalize();
+    return s;
+}
+
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell_lamp", "basic", "spheres"}; }
+std::vector<std::string> builtinSceneNames() { return {"cornell", "cornell_lamp", "basic", "spheres", "two_rooms"}; }
 
 bool isBuiltinScene(const std::string& name) {
     for (auto& n : builtinSceneNames())
@@ -176,6 +212,7 @@ Scene makeBuiltinScene(const std::string& name) {
     if (name == "cornell_lamp") return makeCornellLamp();
     if (name == "basic") return makeBasic();
     if (name == "spheres") return makeSpheres();
+    if (name == "two_rooms") return makeTwoRooms();
     std::string valid;
     for (const std::string& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;
     throw Error("unknown built-in scene '" + name + "' (valid: " + valid + ")");

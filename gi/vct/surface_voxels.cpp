@@ -25,7 +25,7 @@ SurfaceVoxelizer::SurfaceVoxelizer()
 }
 
 void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                                glm::ivec3 clipMin, glm::ivec3 clipMax) {
+                                glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing) {
     const int res = grid.resolution;
     vct::VCTParams p = grid;
     p.clipMin = glm::ivec4(clipMin, 0);
@@ -52,9 +52,12 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     mVoxelizeProg.use();
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    mBlock.set(p);
     mMaterialBinding.begin(mRepeat.id());
-    ctx.scene.draw([&](const Material& m, int) { mMaterialBinding.bind(ctx.scene, m); });
+    for (int axis = slicing ? 1 : 0; axis <= (slicing ? 3 : 0); ++axis) {
+        p.sliceAxis = axis;
+        mBlock.set(p);
+        ctx.scene.draw([&](const Material& m, int) { mMaterialBinding.bind(ctx.scene, m); });
+    }
     mMaterialBinding.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDepthMask(GL_TRUE);

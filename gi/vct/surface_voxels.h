@@ -34,9 +34,10 @@ public:
     SurfaceVoxelizer();
 
     // Clears [clipMin, clipMax) of the grid (in its toroidal place), then voxelizes the scene
-    // into albedo and normal (GL_R32UI volumes of grid.resolution^3) there.
+    // into albedo and normal (GL_R32UI volumes of grid.resolution^3) there: one conservative draw,
+    // or with `slicing` seed 001's three draws, one along each axis, into the same volumes.
     void voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, glm::ivec3 clipMin,
-                  glm::ivec3 clipMax);
+                  glm::ivec3 clipMax, bool slicing = false);
     // The direct light each side of every occupied voxel leaves, into exitFront and exitBack
     // (kExitFormat volumes of the grid's size); lights in batches of kVCTMaxLights.
     void inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint exitFront,

@@ -18,12 +18,20 @@ GI_CONST int kDiffusionImageExitFront = 3;  // R11F_G11F_B10F radiance leaving a
 GI_CONST int kDiffusionImageExitBack = 4;   // and against it
 GI_CONST int kDiffusionImageIndirect = 2;   // shade: E / pi, rgba16f
 GI_CONST int kDiffusionImageView = 2;       // resolve: the accumulation as an rgba16f volume
+GI_CONST int kDiffusionImageViewInFlight = 3;  // resolve: the light in flight after the last step
+GI_CONST int kDiffusionImageViewBounces = 4;   // resolve: the mean bounce order of the accumulated light
 
 // Shader storage bindings.
 GI_CONST int kDiffusionBufferSource = 0;       // 3 vec4 (R, G, B SH) per cell: the light in flight
 GI_CONST int kDiffusionBufferDestination = 1;  // the next step's
 GI_CONST int kDiffusionBufferOutgoing = 2;     // emit: 6 vec4 per cell, the flux (rgb) leaving through each face
 GI_CONST int kDiffusionBufferAccum = 3;        // 3 vec4 per cell: incoming light summed over the steps (occupied cells)
+// Bounce orders (one float per cell): the flux-weighted mean bounce order of the light in flight
+// (source and destination, ping-pong beside the light), and of the light accumulated, summed as
+// order times flux (the accumulation's band 0 gives the flux to divide by).
+GI_CONST int kDiffusionBufferOrderSource = 4;
+GI_CONST int kDiffusionBufferOrderDestination = 5;
+GI_CONST int kDiffusionBufferOrderAccum = 6;
 
 // The face transfer (seed 001 eq. 3.2.1-3.2.3, corrected, see propagate.glsl): the 2-band SH of
 // the indicator of the solid angle a cell's face subtends from its centre (2 pi / 3), towards
@@ -42,7 +50,7 @@ struct DiffusionParams {
     int resolution;
     int albedoMode;    // 0: the voxel's albedo; 1: 0.5 (seed 001's constant)
     float intensity;
-    float pad0;
+    float nudge;       // shade: cells along the pixel's normal
     mat4 invViewProj;  // shade: pixel to world
     int width;
     int height;

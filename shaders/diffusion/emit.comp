@@ -18,6 +18,7 @@ layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(std430, binding = kDiffusionBufferSource) readonly buffer Source { vec4 src[]; };
 layout(std430, binding = kDiffusionBufferOutgoing) writeonly buffer Outgoing { vec4 outgoing[]; };
+layout(std430, binding = kDiffusionBufferOrderSource) readonly buffer OrderSource { float orderSrc[]; };
 
 void main() {
     ivec3 cell = ivec3(gl_GlobalInvocationID);
@@ -40,5 +41,6 @@ void main() {
     }
     vec3 flux = 2.0 * sqrt(kPi) * max(vec3(r.x, g.x, b.x), vec3(0.0));
     vec3 scale = mix(vec3(0.0), flux / max(total, vec3(1e-30)), greaterThan(total, vec3(0.0)));
-    for (int d = 0; d < 6; ++d) outgoing[6 * i + d] = vec4(parts[d] * scale, 0.0);
+    // w: the bounce order of the light leaving (gather.comp).
+    for (int d = 0; d < 6; ++d) outgoing[6 * i + d] = vec4(parts[d] * scale, orderSrc[i]);
 }

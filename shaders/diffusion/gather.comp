@@ -9,6 +9,9 @@
 //     reflects along its mean normal only, which throws away light reaching a one-voxel wall's
 //     back). The albedo is the voxel's, or 0.5 with albedoMode 1 (the source's constant).
 // So bounces come from steps: light reflected at step k travels on at step k + 1.
+// Bounce orders ride along: the light arriving has the flux-weighted mean of its senders'
+// orders (outgoing .w); an empty cell passes that on, an occupied cell adds it, times the flux,
+// to its accumulated order and reflects the light one order higher.
 #include "diffusion/common.glsl"
 
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
@@ -17,6 +20,8 @@ layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uNormal
 layout(std430, binding = kDiffusionBufferOutgoing) readonly buffer Outgoing { vec4 outgoing[]; };
 layout(std430, binding = kDiffusionBufferDestination) writeonly buffer Destination { vec4 dst[]; };
 layout(std430, binding = kDiffusionBufferAccum) buffer Accumulated { vec4 accum[]; };
+layout(std430, binding = kDiffusionBufferOrderDestination) writeonly buffer OrderDestination { float orderDst[]; };
+layout(std430, binding = kDiffusionBufferOrderAccum) buffer OrderAccumulated { float orderAccum[]; };
 
 void main() {
     ivec3 cell = ivec3(gl_GlobalInvocationID);
@@ -24,11 +29,17 @@ void main() {
     int i = cellIndex(cell);
     vec3 arriving[6];
     bool arrived = false;
+    float flux = 0.0, order = 0.0;
     for (int d = 0; d < 6; ++d) {
         ivec3 from = cell - kDirections[d];
-        arriving[d] = insideGrid(from) ? outgoing[6 * cellIndex(from) + d].rgb : vec3(0.0);
+        vec4 o = insideGrid(from) ? outgoing[6 * cellIndex(from) + d] : vec4(0.0);
+        arriving[d] = o.rgb;
         arrived = arrived || arriving[d] != vec3(0.0);
+        float f = o.r + o.g + o.b;
+        flux += f;
+        order += f * o.w;
     }
+    order = flux > 0.0 ? order / flux : 0.0;
     vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
     for (int d = 0; d < 6; ++d) {
         vec4 beam = faceLobe(vec3(kDirections[d])) / kFaceSolidAngle;
@@ -42,6 +53,7 @@ void main() {
             accum[3 * i] += r;
             accum[3 * i + 1] += g;
             accum[3 * i + 2] += b;
+            orderAccum[i] += flux * order;
         }
         vec3 n = meanNormal(imageLoad(uNormal, cell).r);
         vec3 front = vec3(0.0), back = vec3(0.0);
@@ -59,7 +71,9 @@ void main() {
         r = front.r * lf + back.r * lb;
         g = front.g * lf + back.g * lb;
         b = front.b * lf + back.b * lb;
+        order = arrived ? order + 1.0 : 0.0;
     }
+    orderDst[i] = order;
     dst[3 * i] = r;
     dst[3 * i + 1] = g;
     dst[3 * i + 2] = b;

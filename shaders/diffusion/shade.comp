@@ -9,7 +9,9 @@
 // stand in, alike weighted (the wall's cells beside the edge, not the ceiling's). None of those
 // either (a surface the voxelization missed): no indirect light. Irradiance is the clamped cosine lobe against the
 // light's travel direction, shCosLobe(-n), times kDiffusionIrradianceScale, written as E / pi
-// (the indirect term's convention), times intensity.
+// (the indirect term's convention), times intensity. With nudge > 0 the point read moves that many
+// cells along the pixel's normal first (seed 001 has no offset; the occupied-only weights are its
+// only leak control).
 #include "diffusion/common.glsl"
 
 layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
@@ -40,7 +42,7 @@ void main() {
         vec4 w = uDiffusion.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         vec3 p = w.xyz / w.w;
         vec3 n = normalize(texelFetch(uNormalG, px, 0).xyz);
-        vec3 g = (p - uDiffusion.gridMin.xyz) / uDiffusion.gridMin.w - 0.5;
+        vec3 g = (p - uDiffusion.gridMin.xyz) / uDiffusion.gridMin.w + n * uDiffusion.nudge - 0.5;
         ivec3 base = ivec3(floor(g));
         vec3 f = g - vec3(base);
         vec4 r = vec4(0.0), gr = vec4(0.0), b = vec4(0.0);

@@ -96,7 +96,8 @@ struct VCTParams {
     int lightCount;
     int accumulate;      // adds to the exit radiance of the earlier batches
     float pad0;
-    float pad1;
+    int sliceAxis;       // voxelize: 0: each triangle along its dominant axis, grown (conservative);
+                         // 1, 2, 3: along x, y, z, not grown, one cell per fragment (seed 001's slicing)
     float pad2;
     // mip
     ivec4 destSize;      // xyz: the level written, in voxels; w unused

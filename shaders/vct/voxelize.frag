@@ -1,7 +1,8 @@
 // Voxelization, fragment stage: one fragment is one voxel column of the projected triangle. The
 // fragment writes every voxel the triangle's depth crosses within its pixel (the depth slope is
 // at most ~1.4 voxels per pixel along the dominant axis, so one or two voxels, three at most),
-// which keeps sloped surfaces watertight. Values go in with a running average by atomic
+// which keeps sloped surfaces watertight. Slicing (seed 001) writes only the cell of the depth at
+// the pixel's centre, as a slab-clipped scan conversion does; the other axes fill the gaps. Values go in with a running average by atomic
 // compare-and-swap on RGBA8 packed in r32ui (seed 000 and 003): rgb the mean, a the count.
 // Albedo is the diffuse albedo (base colour times 1 - metallic); normals are stored as
 // n * 0.5 + 0.5. Emission is not stored: emissive surfaces reach VCT as area lights (inject.comp).
@@ -51,6 +52,7 @@ void main() {
     float z0 = clamp(gGrid.z - slope, gDepthRange.x, gDepthRange.y);
     float z1 = clamp(gGrid.z + slope, gDepthRange.x, gDepthRange.y);
     int first = int(floor(z0)), last = min(int(floor(z1)), int(floor(z0)) + 2);
+    if (uVCT.sliceAxis > 0) first = last = int(floor(gGrid.z));  // slicing: the slice the pixel's centre lies in
 
     vec3 albedo = clamp(base.rgb * (1.0 - metallic), 0.0, 1.0);
     vec3 n = normal * 0.5 + 0.5;

@@ -6,6 +6,8 @@
 // fragment stage discards fragments outside the triangle's bounding box grown by half a pixel.
 // Attributes at the moved corners are extrapolated with the original triangle's barycentrics.
 // The seed's listing has bugs here (digest 000 section 6); this is written from the description.
+// Slicing (uVCT.sliceAxis > 0, seed 001): the triangle is projected along the axis given, as it
+// is, and a triangle edge-on to it is dropped (the other two axes catch it).
 #include "vct/vct_shared.h"
 
 layout(triangles) in;
@@ -33,6 +35,8 @@ void main() {
     for (int i = 0; i < 3; ++i) g[i] = (vWorld[i] - uVCT.gridMin.xyz) / uVCT.cellSize;
     vec3 n = abs(cross(g[1] - g[0], g[2] - g[0]));
     int axis = n.x >= n.y && n.x >= n.z ? 0 : (n.y >= n.z ? 1 : 2);
+    bool slicing = uVCT.sliceAxis > 0;
+    if (slicing) axis = uVCT.sliceAxis - 1;
     vec3 s[3];
     for (int i = 0; i < 3; ++i) s[i] = swizzle(g[i], axis);
 
@@ -47,9 +51,10 @@ void main() {
     for (int i = 0; i < 3; ++i) {
         vec2 e = s[(i + 1) % 3].xy - s[i].xy;
         en[i] = normalize(vec2(e.y, -e.x)) * orient;
-        ed[i] = 0.5 * (abs(en[i].x) + abs(en[i].y));
+        ed[i] = slicing ? 0.0 : 0.5 * (abs(en[i].x) + abs(en[i].y));
     }
-    vec2 lo = min(p0, min(p1, p2)) - 0.5, hi = max(p0, max(p1, p2)) + 0.5;
+    float grow = slicing ? 0.0 : 0.5;
+    vec2 lo = min(p0, min(p1, p2)) - grow, hi = max(p0, max(p1, p2)) + grow;
     float zlo = min(s[0].z, min(s[1].z, s[2].z)), zhi = max(s[0].z, max(s[1].z, s[2].z));
 
     for (int i = 0; i < 3; ++i) {
