@@ -18,13 +18,16 @@ pass() {  # pass NAME: the pass's GPU ms in the last frame of the last stats.jso
   python3 -c "import json,sys; s=json.load(open('$out/stats.json')); print(sum(p['gpuMs'] for p in s['passes'] if p['name']==sys.argv[1]))" "$1"
 }
 
-# step PRESET PASS KEY_RES KEY_STEPS RES FEW MANY: ms per step, one line per run
+# step PRESET PASS KEY_RES KEY_STEPS RES FEW MANY [KEY=VALUE...]: ms per step, one line per run
 step() {
   local preset=$1 name=$2 kres=$3 ksteps=$4 res=$5 few=$6 many=$7
+  shift 7
+  local extra=()
+  for kv in "$@"; do extra+=(--set "$kv"); done
   for ((r = 0; r < runs; ++r)); do
-    "$build/app/gi-render" "$preset" --set "$kres=$res" --set "$ksteps=$few" --width 128 --height 96 --frames 3 --out "$out" >/dev/null
+    "$build/app/gi-render" "$preset" --set "$kres=$res" --set "$ksteps=$few" "${extra[@]}" --width 128 --height 96 --frames 3 --out "$out" >/dev/null
     a=$(pass "$name")
-    "$build/app/gi-render" "$preset" --set "$kres=$res" --set "$ksteps=$many" --width 128 --height 96 --frames 3 --out "$out" >/dev/null
+    "$build/app/gi-render" "$preset" --set "$kres=$res" --set "$ksteps=$many" "${extra[@]}" --width 128 --height 96 --frames 3 --out "$out" >/dev/null
     b=$(pass "$name")
     python3 -c "print(($b - $a) / ($many - $few))"
   done
@@ -52,7 +55,8 @@ print('bytes per cell-step: %d (empty cell), %d (occupied); seed 001: 104 floats
 "
 for res in 32 64; do
   step presets/diffusion_cornell.json diffusion.propagate diffusion.gridResolution diffusion.iterations $res 1 65 | summary "diffusion (seed 001)" $res
-  step presets/lpv_cornell.json lpv.propagate lpv.gridResolution lpv.propagationSteps $res 1 17 | summary "LPV" $res
+  # One bounce, so a step is one propagation of the grid (LPV's default 2 bounces propagate twice).
+  step presets/lpv_cornell.json lpv.propagate lpv.gridResolution lpv.propagationSteps $res 1 17 lpv.bounces=1 | summary "LPV (1 bounce)" $res
 done
 echo "seed 001 (GTX 285, quoted):    32^3: 2.8e-5 ms per voxel-step"
 if "$build/app/gi-render" presets/diffusion_cornell.json --width 128 --height 96 --frames 2 --score --out "$out" >/dev/null 2>&1; then
