@@ -60,7 +60,9 @@ struct Result {
     std::vector<float> order;         // the accumulated bounce order times flux, per cell
 };
 
-Result propagate(Diffusion& d, const Grid& g, int steps, DiffusionAlbedo mode = DiffusionAlbedo::Voxel) {
+// `afterStep`, when given, sees the light in flight after every step.
+Result propagate(Diffusion& d, const Grid& g, int steps, DiffusionAlbedo mode = DiffusionAlbedo::Voxel,
+                 const std::function<void(const std::vector<float>&)>& afterStep = nullptr) {
     auto volume = [&](const std::vector<uint32_t>& data) {
         gl::Texture t = gl::Texture::create3D(GL_R32UI, g.res, g.res, g.res);
         glTextureSubImage3D(t.id(), 0, 0, 0, 0, g.res, g.res, g.res, GL_RED_INTEGER, GL_UNSIGNED_INT, data.data());
@@ -78,6 +80,11 @@ Result propagate(Diffusion& d, const Grid& g, int steps, DiffusionAlbedo mode = 
     for (int s = 0; s < steps; ++s) {
         d.propagateStep(albedo.id(), normal.id(), from, to, outgoing.id(), accum.id(), g.res, mode);
         std::swap(from, to);
+        if (afterStep) {
+            std::vector<float> light(floats);
+            glGetNamedBufferSubData(from, 0, GLsizeiptr(floats * 4), light.data());
+            afterStep(light);
+        }
     }
     Result r{std::vector<float>(floats), std::vector<float>(floats), std::vector<float>(g.cells())};
     glGetNamedBufferSubData(from, 0, GLsizeiptr(floats * 4), r.light.data());
@@ -129,6 +136,41 @@ TEST_F(DiffusionGL, AOneVoxelWallStopsTheLight) {
         EXPECT_GT(absorbed, 0.3) << "the VPL faces the wall, 6 cells away";
         EXPECT_LE(absorbed, 1.0 + 1e-4);
     }
+}
+
+// A lit wall facing an occluder (issue 16): a VPL in front of a black wall sends its light to a
+// plate of albedo 0.5 six cells away. The light stops at the plate's cells and is re-emitted
+// from them: the flux the plate sends back out (the light in flight in its cells, summed over the
+// steps, each reflection in flight there for one step) is half the flux that reached it, and
+// part of it reaches the wall as a second bounce (the wall's light is of order 1, what the VPL
+// sends it sideways, and 2: its mean order lies above 1).
+TEST_F(DiffusionGL, AnOccluderReEmitsHalfTheFirstBounceWithAlbedoHalf) {
+    const int res = 16;
+    Grid g(res);
+    for (int z = 2; z < 14; ++z)
+        for (int y = 2; y < 14; ++y) {
+            g.solid(3, y, z, glm::vec3(0.0f), {1, 0, 0});    // the wall, black: it reflects nothing
+            g.solid(10, y, z, glm::vec3(0.5f), {-1, 0, 0});  // the occluder, facing the wall
+        }
+    g.source(4, 8, 8, {1, 0, 0});
+    auto plate = [&](size_t i) { return int(i % res) == 10 && g.occupied(i); };
+    auto wall = [&](size_t i) { return int(i % res) == 3 && g.occupied(i); };
+    double reemitted = 0.0;
+    Diffusion d;
+    Result r = propagate(d, g, 60, DiffusionAlbedo::Voxel, [&](const std::vector<float>& light) { reemitted += flux(light, plate); });
+    const double reached = flux(r.accum, plate), second = flux(r.accum, wall);
+    double order = 0.0;
+    for (size_t i = 0; i < g.cells(); ++i)
+        if (wall(i)) order += r.order[i];
+    order /= 3.0 * second;
+    const double albedo = 128.0 / 255.0;  // 0.5 as RGBA8 stores it
+    std::printf("the occluder: reached by %.5f, re-emitted %.5f (%.4f of it); the wall received %.5f, mean bounce order %.3f\n",
+                reached, reemitted, reemitted / reached, second, order);
+    EXPECT_GT(reached, 0.2) << "the VPL faces the plate";
+    EXPECT_NEAR(reemitted / reached, albedo, 0.05 * albedo) << "the second bounce carries half the first";
+    EXPECT_GT(second, 0.0);
+    EXPECT_GT(order, 1.0) << "the wall sees light that bounced off the plate";
+    EXPECT_LT(order, 2.0);
 }
 
 // A closed box: with black walls every bit of the flux is absorbed once (nothing leaves, nothing
