@@ -47,7 +47,7 @@ inline float smoothstep(float edge0, float edge1, float x) {
 float atan2(float y, float x) { return atan(y, x); }
 #endif
 
-GI_CONST int kLightBufferBinding = 7;         // shader storage binding of the GPULight array (passes use 0..3)
+GI_CONST int kLightBufferBinding = 7;         // shader storage binding of the GPULight array (passes use 0..6)
 GI_CONST int kAreaMaxExactTriangles = 16;    // area lights (and emitter parts) up to this many triangles are shaded exactly
 GI_CONST float kAreaPlaneTolerance = 1e-3f;  // triangleIrradiance: points this close to the plane (times the size) get nothing
 GI_CONST int kAreaTriangleBinding = 8;        // shader storage binding of the area lights' triangles

@@ -21,7 +21,7 @@ GI_CONST int kDiffusionImageView = 2;       // resolve: the accumulation as an r
 GI_CONST int kDiffusionImageViewInFlight = 3;  // resolve: the light in flight after the last step
 GI_CONST int kDiffusionImageViewBounces = 4;   // resolve: the mean bounce order of the accumulated light
 
-// Shader storage bindings.
+// Shader storage bindings (7 to 10 are the frame's light buffers, common/light.h).
 GI_CONST int kDiffusionBufferSource = 0;       // 3 vec4 (R, G, B SH) per cell: the light in flight
 GI_CONST int kDiffusionBufferDestination = 1;  // the next step's
 GI_CONST int kDiffusionBufferOutgoing = 2;     // emit: 6 vec4 per cell, the flux (rgb) leaving through each face
