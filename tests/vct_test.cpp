@@ -451,10 +451,18 @@ TEST_F(VCTGL, TwoRoomLeak) {
     double litRoom = test::meanIndirect(r, fs);
     fs.vct.sh = false;
     double litRoomDefault = test::meanIndirect(r, fs);
-    std::printf("indirect in the dark room: isotropic %.5f, SH %.5f; lit room: SH %.5f, default %.5f (leak with the defaults %.0f %%)\n",
-                leakIsotropic, leakSH, litRoom, litRoomDefault, 100.0 * leakIsotropic / litRoomDefault);
+    // vct.faceSides: each face's light on its own side of the wall.
+    fs.vct.faceSides = true;
+    double litRoomSides = test::meanIndirect(r, fs);
+    test::lookIntoClosedRoom(fs.camera);
+    double leakSides = test::meanIndirect(r, fs);
+    std::printf("indirect in the dark room: isotropic %.5f, SH %.5f, face sides %.5f; lit room: SH %.5f, default %.5f, face sides %.5f "
+                "(leak with the defaults %.1f %%, with face sides %.1f %%)\n",
+                leakIsotropic, leakSH, leakSides, litRoom, litRoomDefault, litRoomSides, 100.0 * leakIsotropic / litRoomDefault,
+                100.0 * leakSides / litRoomSides);
     EXPECT_GT(litRoom, 0.0);
     EXPECT_LT(leakSH, 0.5 * leakIsotropic) << "SH voxels should cut the leak at least in half";
+    EXPECT_LT(leakSides, 0.05 * litRoomSides) << "face sides: issue 13's leak bound";
 }
 
 // Shift invariance (issue 13 item 5): the cornell box, its light and the camera moved together

@@ -25,11 +25,13 @@ SurfaceVoxelizer::SurfaceVoxelizer()
 }
 
 void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                                glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing) {
+                                glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing, GLuint sides) {
     const int res = grid.resolution;
     vct::VCTParams p = grid;
     p.clipMin = glm::ivec4(clipMin, 0);
     p.clipMax = glm::ivec4(clipMax, 0);
+    p.sides = sides != 0 ? 1 : 0;
+    if (sides) glBindImageTexture(vct::kVCTImageSides, sides, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     mClearProg.use();
     mBlock.set(p);
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
@@ -66,13 +68,17 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
 }
 
 void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                              GLuint exitFront, GLuint exitBack) {
+                              GLuint exitFront, GLuint exitBack, GLuint sides, GLuint sidesRadiance) {
     const auto& lights = ctx.settings.lights;
     mInjectProg.use();
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageExitFront, exitFront, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
     glBindImageTexture(vct::kVCTImageExitBack, exitBack, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
+    if (sides) {
+        glBindImageTexture(vct::kVCTImageSides, sides, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(vct::kVCTImageSidesRadiance, sidesRadiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+    }
     size_t first = 0;
     do {
         int count = int(std::min(lights.size() - first, size_t(vct::kVCTMaxLights)));
@@ -80,6 +86,7 @@ void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& gri
         p.lightFirst = int(first);
         p.lightCount = count;
         p.accumulate = first > 0 ? 1 : 0;
+        p.sides = sides != 0 ? 1 : 0;
         mBlock.set(p);
         for (int i = 0; i < count; ++i) {
             const ShadowMapView& sm = ctx.shadows[first + size_t(i)];

@@ -37,11 +37,13 @@ public:
     // into albedo and normal (GL_R32UI volumes of grid.resolution^3) there: one conservative draw,
     // or with `slicing` seed 001's three draws, one along each axis, into the same volumes.
     void voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, glm::ivec3 clipMin,
-                  glm::ivec3 clipMax, bool slicing = false);
+                  glm::ivec3 clipMax, bool slicing = false, GLuint sides = 0);
     // The direct light each side of every occupied voxel leaves, into exitFront and exitBack
     // (kExitFormat volumes of the grid's size); lights in batches of kVCTMaxLights.
+    // With `sides` (an r32ui volume six grids wide along x, voxelize() filled it) also the
+    // radiance of each side into sidesRadiance (RGBA16F, as wide), as inject.comp describes.
     void inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint exitFront,
-                GLuint exitBack);
+                GLuint exitBack, GLuint sides = 0, GLuint sidesRadiance = 0);
     bool reloadShaders(std::string& log);
     // Voxelizations run since creation (tests: a static grid is not voxelized twice).
     int voxelizationCount() const { return mVoxelizationCount; }

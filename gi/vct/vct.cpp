@@ -101,7 +101,8 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
         double scaled = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
         bytes += size_t(scaled) * 16;  // the low-resolution trace targets
     }
-    if (anisotropicOn(s)) bytes += 6 * mipChain(8, res / 2, std::max(mips - 1, 1));
+    if (anisotropicOn(s)) bytes += 6 * mipChain(8 + 2, res / 2, std::max(mips - 1, 1));  // radiance, coverage
+    if (anisotropicOn(s) && s.faceSides) bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
     if (shOn(s)) bytes += 3 * mipChain(8, res, mips);
     return bytes;
 }
@@ -112,9 +113,11 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     if (any(Cost(changes), Cost::Recompile)) {
         // The level count and the voxel layout are compiled into the bounce and trace programs.
         mAnisotropic = anisotropicOn(s);
+        mFaceSides = mAnisotropic && s.faceSides;
         mSHVoxels = shOn(s);
         std::vector<std::string> defines = {"VCT_LEVELS " + std::to_string(count),
                                             std::string("VCT_ANISO ") + (mAnisotropic ? "1" : "0"),
+                                            std::string("VCT_SIDES ") + (mFaceSides ? "1" : "0"),
                                             std::string("VCT_SH ") + (mSHVoxels ? "1" : "0")};
         mBounceProg = gl::Program("vct.bounce", {{GL_COMPUTE_SHADER, "vct/bounce.comp"}}, defines);
         mTraceProg = gl::Program("vct.trace", {{GL_COMPUTE_SHADER, "vct/trace.comp"}}, defines);
@@ -136,14 +139,21 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
         l.exitBack = gl::Texture::create3D(kExitFormat, r, r, r);
         l.radiance = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
         mVoxelBytes += l.albedo.bytes() * 2 + l.exitFront.bytes() * 2;
+        if (mFaceSides) {
+            l.sides = gl::Texture::create3D(GL_R32UI, 6 * r, r, r);
+            l.sidesRadiance = gl::Texture::create3D(GL_RGBA16F, 6 * r, r, r);
+            mVoxelBytes += l.sides.bytes() + l.sidesRadiance.bytes();
+        }
         mRadianceBytes += l.radiance.bytes();
         mLevels.push_back(std::move(l));
     }
     mAniso = gl::Texture();
+    mAnisoCoverage = gl::Texture();
     for (auto& t : mSH) t = gl::Texture();
     if (mAnisotropic) {
         mAniso = gl::Texture::create3D(GL_RGBA16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
-        mRadianceBytes += mAniso.bytes();
+        mAnisoCoverage = gl::Texture::create3D(GL_R16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
+        mRadianceBytes += mAniso.bytes() + mAnisoCoverage.bytes();
     }
     if (mSHVoxels)
         for (auto& t : mSH) {
@@ -194,7 +204,7 @@ void VCT::updateGrids(const FrameContext& ctx) {
         l.box = nb;
         l.voxelized = true;
         if (!partial) {
-            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), glm::ivec3(0), glm::ivec3(r));
+            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), glm::ivec3(0), glm::ivec3(r), false, l.sides.id());
             mVoxelizedVoxels[k] = voxels(r);
             continue;
         }
@@ -204,7 +214,7 @@ void VCT::updateGrids(const FrameContext& ctx) {
             glm::ivec3 lo(0), hi(r);
             if (delta[axis] > 0) lo[axis] = r - delta[axis];
             else hi[axis] = -delta[axis];
-            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), lo, hi);
+            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), lo, hi, false, l.sides.id());
             glm::ivec3 size = hi - lo;
             mVoxelizedVoxels[k] += size_t(size.x) * size_t(size.y) * size_t(size.z);
         }
@@ -213,7 +223,9 @@ void VCT::updateGrids(const FrameContext& ctx) {
 
 void VCT::inject(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("vct.inject");
-    for (Level& l : mLevels) mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.exitFront.id(), l.exitBack.id());
+    for (Level& l : mLevels)
+        mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.exitFront.id(), l.exitBack.id(), l.sides.id(),
+                         l.sidesRadiance.id());
 }
 
 void VCT::bindVoxelImages(const Level& l) const {
@@ -269,12 +281,36 @@ void VCT::buildMips() {
     if (mSHVoxels)
         for (auto& t : mSH)
             for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1, mResolution >> m, 0, 0);
-    if (mAnisotropic)
+    if (mAnisotropic) {
+        // The first mip from level 0's sides and opacity, the rest from the mip below, each with
+        // its coverage (mip.comp).
+        if (mFaceSides) glBindTextureUnit(vct::kVCTUnitMipSides, mLevels[0].sidesRadiance.id());
+        auto directional = [&](const gl::Texture& src, int srcLevel, int dstLevel, int direction, int size, int srcOffset,
+                               int dstOffset, int fromSides) {
+            vct::VCTParams p{};
+            p.resolution = mResolution;
+            p.fromSides = fromSides;
+            p.sourceLevel = srcLevel;
+            p.destSize = glm::ivec4(glm::ivec3(size), 0);
+            p.direction = direction;
+            p.sourceOffsetX = srcOffset;
+            p.destOffsetX = dstOffset;
+            mBlock.set(p);
+            glBindTextureUnit(vct::kVCTUnitMipSource, src.id());
+            glBindTextureUnit(vct::kVCTUnitMipSourceCoverage, mAnisoCoverage.id());
+            glBindImageTexture(vct::kVCTImageMipDest, mAniso.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glBindImageTexture(vct::kVCTImageMipDestCoverage, mAnisoCoverage.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
+            GLuint g = gl::groupCount(size, shared::kGroup3D);
+            glDispatchCompute(g, g, g);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        };
+        const int half = mResolution / 2;
         for (int d = 0; d < 6; ++d) {
-            int half = mResolution / 2;
-            level(mLevels[0].radiance, 0, mAniso, 0, d, half, 0, d * half);
-            for (int m = 1; m < mMipCount - 1; ++m) level(mAniso, m - 1, mAniso, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m));
+            directional(mLevels[0].radiance, 0, 0, d, half, 0, d * half, mFaceSides ? 1 : 2);
+            for (int m = 1; m < mMipCount - 1; ++m)
+                directional(mAniso, m - 1, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m), 0);
         }
+    }
 }
 
 void VCT::bindRadiance() const {
@@ -285,6 +321,10 @@ void VCT::bindRadiance() const {
     }
     glBindTextureUnit(GLuint(vct::kVCTUnitAniso), mAniso.id());
     glBindSampler(GLuint(vct::kVCTUnitAniso), mAnisoSampler.id());
+    glBindTextureUnit(GLuint(vct::kVCTUnitSides), mLevels[0].sidesRadiance.id());
+    glBindSampler(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoSampler.id());
+    glBindTextureUnit(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoCoverage.id());
+    glBindSampler(GLuint(vct::kVCTUnitSides), mAnisoSampler.id());
     for (int c = 0; c < 3; ++c) {
         glBindTextureUnit(GLuint(vct::kVCTUnitSH + c), mSH[size_t(c)].id());
         glBindSampler(GLuint(vct::kVCTUnitSH + c), mLinear.id());

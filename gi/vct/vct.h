@@ -129,6 +129,7 @@ public:
         gl::Texture bouncedFront, bouncedBack;  // direct + gathered light after a bounce (bounceCount > 1)
         gl::Buffer occupiedList, occupiedDispatch;  // compact.comp's voxel list and indirect dispatch
         gl::Texture radiance;                   // RGBA16F premultiplied radiance + opacity, mips
+        gl::Texture sides, sidesRadiance;       // anisotropic: per-side normals (r32ui) and exit radiance (RGBA16F), 6 res wide
         VoxelBox box;
         bool voxelized = false;
     };
@@ -152,10 +153,11 @@ private:
     gl::UniformBlock<vct::VCTParams> mBlock;  // every pass reads it
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
+    gl::Texture mAnisoCoverage;  // R16F beside it: the facing coverage (mip.comp)
     std::array<gl::Texture, 3> mSH;
     gl::Sampler mLinear, mRepeat, mAnisoSampler;
     int mResolution = 0, mMipCount = 0;
-    bool mAnisotropic = false, mSHVoxels = false;
+    bool mAnisotropic = false, mSHVoxels = false, mFaceSides = false;
     VCTMode mMode = VCTMode::Dense;
     uint64_t mSceneId = 0;
     size_t mVoxelBytes = 0, mRadianceBytes = 0;

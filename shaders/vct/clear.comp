@@ -6,6 +6,7 @@
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform writeonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform writeonly uimage3D uNormalVox;
+layout(binding = kVCTImageSides, r32ui) uniform writeonly uimage3D uSidesVox;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -13,4 +14,6 @@ void main() {
     ivec3 t = texelOf(v);
     imageStore(uAlbedoVox, t, uvec4(0u));
     imageStore(uNormalVox, t, uvec4(0u));
+    if (uVCT.sides != 0)
+        for (int s = 0; s < 6; ++s) imageStore(uSidesVox, t + ivec3(s * uVCT.resolution, 0, 0), uvec4(0u));
 }

@@ -20,6 +20,8 @@ layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
 layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform image3D uExitFront;
 layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform image3D uExitBack;
+layout(binding = kVCTImageSides, r32ui) uniform readonly uimage3D uSidesVox;
+layout(binding = kVCTImageSidesRadiance, rgba16f) uniform image3D uSidesRadiance;
 layout(binding = kVCTUnitShadow2D) uniform sampler2DShadow uShadow2D[kVCTMaxLights];
 layout(binding = kVCTUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVCTMaxLights];
 
@@ -35,6 +37,60 @@ float visibility(int i, GPULight l, vec3 p) {
     return texture(uShadow2D[i], tc);
 }
 
+// The batch's irradiance on a one-sided surface of normal n at p (the per-side volumes).
+vec3 sideIrradiance(vec3 p, vec3 n) {
+    vec3 sum = vec3(0.0);
+    vec3 probe = p + n * (kVCTSideProbe * uVCT.cellSize);
+    for (int i = 0; i < uVCT.lightCount; ++i) {
+        GPULight l = uLights[uVCT.lightFirst + i];
+        vec3 L;
+        vec3 E = l.color.rgb;
+        if (l.info.x == kLightDirectional) {
+            L = -l.direction.xyz;
+        } else {
+            vec3 toLight = l.position.xyz - p;
+            float dist = length(toLight);
+            L = toLight / max(dist, 1e-6);
+            E *= lightFalloff(l, dist, dot(-L, l.direction.xyz));
+        }
+        if (l.info.x == kLightArea && l.info.w <= kAreaMaxExactTriangles) {
+            vec3 e = areaIrradiance(l, p, n);
+            if (any(greaterThan(e, vec3(0.0)))) sum += e * visibility(i, l, probe);
+            continue;
+        }
+        float c = dot(n, L);
+        if (c <= 0.0 || all(equal(E, vec3(0.0)))) continue;
+        sum += E * c * visibility(i, l, probe);
+    }
+    return sum;
+}
+
+// The six sides of an anisotropic grid's voxel: side 2a + (0: +, 1: -) holds the fragments whose
+// normal faces that way along axis a; it leaves albedo * E / pi under its own mean normal, stored
+// times its coverage (the mean over all the voxel's fragments of max(0, n . side)) with the
+// coverage in alpha, so a cone weighs the sides it sees by how much of the voxel faces it.
+void injectSides(ivec3 v, ivec3 t, uint packedAlbedo) {
+    vec4 albedo = unpackVoxel(packedAlbedo);
+    float total = max(round(albedo.a * kVCTMaxCount), 1.0);
+    vec3 p = voxelCentre(v);
+    for (int s = 0; s < 6; ++s) {
+        ivec3 ts = t + ivec3(s * uVCT.resolution, 0, 0);
+        vec4 result = vec4(0.0);
+        uint packedSide = imageLoad(uSidesVox, ts).r;
+        if (occupied(packedSide) && occupied(packedAlbedo)) {
+            vec4 u = unpackVoxel(packedSide);
+            vec3 n = u.xyz * 2.0 - 1.0;
+            vec3 axis = vec3(0.0);
+            axis[s / 2] = (s & 1) == 0 ? 1.0 : -1.0;
+            float coverage = clamp(round(u.a * kVCTMaxCount) / total * max(dot(n, axis), 0.0), 0.0, 1.0);
+            float len = length(n);
+            if (len > 1e-3 && coverage > 0.0) result = vec4(albedo.rgb / kPi * sideIrradiance(p, n / len) * coverage, coverage);
+        }
+        if (uVCT.accumulate != 0) result.rgb += imageLoad(uSidesRadiance, ts).rgb;
+        imageStore(uSidesRadiance, ts, result);
+    }
+}
+
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (!insideGrid(v)) return;
@@ -42,6 +98,7 @@ void main() {
     vec3 front = vec3(0.0), back = vec3(0.0);
     uint packedNormal = imageLoad(uNormalVox, t).r;
     uint packedAlbedo = imageLoad(uAlbedoVox, t).r;
+    if (uVCT.sides != 0) injectSides(v, t, packedAlbedo);
     if (occupied(packedAlbedo)) {
         vec3 n = unpackVoxel(packedNormal).xyz * 2.0 - 1.0;
         float len = length(n);

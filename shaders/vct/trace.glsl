@@ -29,12 +29,19 @@
 // silently.
 #include "vct/common.glsl"
 
+#ifndef VCT_SIDES
+#define VCT_SIDES 0
+#endif
 #ifndef VCT_LEVELS
 #define VCT_LEVELS 1
 #endif
 layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
 #if VCT_ANISO
 layout(binding = kVCTUnitAniso) uniform sampler3D uAniso;  // +X -X +Y -Y +Z -Z side by side along x
+layout(binding = kVCTUnitAnisoCoverage) uniform sampler3D uAnisoCoverage;  // the atlas's facing coverage (mip.comp)
+#if VCT_SIDES
+layout(binding = kVCTUnitSides) uniform sampler3D uSides;  // level 0's exit sides +x -x +y -y +z -z, full resolution
+#endif
 #endif
 #if VCT_SH
 layout(binding = kVCTUnitSH) uniform sampler3D uSHR;
@@ -62,25 +69,52 @@ vec4 levelRadiance(int k, vec3 tc, float lod) {
 // One mip m of the atlas: x kept half a texel inside the slab so the filter does not blend in
 // the neighbouring direction, and the fade to the zero border that y and z get from the sampler
 // applied to x by hand (a point u texels inside a face keeps 0.5 + u of the face texel).
-vec4 sampleAnisoMip(vec3 tc, float m, vec3 slab, vec3 w) {
+// `coverage` receives the weighted facing coverage (mip.comp).
+vec4 sampleAnisoMip(vec3 tc, float m, vec3 slab, vec3 w, out float coverage) {
     float size = float(uVCT.resolution / 2) * exp2(-m);
     float halfTexel = 0.5 / size;
     float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
     float fade = clamp(min(tc.x, 1.0 - tc.x) * size + 0.5, 0.0, 1.0);
-    return fade * (w.x * textureLod(uAniso, vec3((x + slab.x) / 6.0, tc.yz), m) +
-                   w.y * textureLod(uAniso, vec3((x + slab.y) / 6.0, tc.yz), m) +
-                   w.z * textureLod(uAniso, vec3((x + slab.z) / 6.0, tc.yz), m));
+    vec3 px = vec3((x + slab.x) / 6.0, tc.yz), py = vec3((x + slab.y) / 6.0, tc.yz), pz = vec3((x + slab.z) / 6.0, tc.yz);
+    coverage = fade * (w.x * textureLod(uAnisoCoverage, px, m).r + w.y * textureLod(uAnisoCoverage, py, m).r +
+                       w.z * textureLod(uAnisoCoverage, pz, m).r);
+    return fade * (w.x * textureLod(uAniso, px, m) + w.y * textureLod(uAniso, py, m) + w.z * textureLod(uAniso, pz, m));
 }
+
+// Level 0 seen by a cone marching along dir: the sides facing back along it (side 2a + 1 when
+// dir[a] > 0), weighted dir^2 and by their coverage, so a side no fragment faces adds nothing
+// (the dark face of a thin wall stays dark even from a grazing direction); opacity from the
+// isotropic volume.
+#if VCT_SIDES
+vec4 sampleSides(vec3 tc, vec3 dir) {
+    float size = float(uVCT.resolution);
+    float halfTexel = 0.5 / size;
+    float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
+    vec3 w = dir * dir;
+    vec3 slab = vec3(0.0, 2.0, 4.0) + step(0.0, dir);
+    vec4 sx = textureLod(uSides, vec3((x + slab.x) / 6.0, tc.yz), 0.0);
+    vec4 sy = textureLod(uSides, vec3((x + slab.y) / 6.0, tc.yz), 0.0);
+    vec4 sz = textureLod(uSides, vec3((x + slab.z) / 6.0, tc.yz), 0.0);
+    float coverage = w.x * sx.a + w.y * sy.a + w.z * sz.a;
+    vec3 radiance = coverage > 1e-6 ? (w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb) / coverage : vec3(0.0);
+    float alpha = levelRadiance(0, tc, 0.0).a;
+    return vec4(radiance * alpha, alpha);
+}
+#endif
 
 vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
     // Weights dir^2, each from the slab of the direction's sign: slab index 2 axis + (dir < 0);
     // the two mips around lod each read at their own clamp, then blended.
     vec3 w = dir * dir;
     vec3 slab = vec3(0.0, 2.0, 4.0) + step(dir, vec3(0.0));
-    float m = floor(lod), f = lod - m;
-    vec4 r = sampleAnisoMip(tc, m, slab, w);
-    if (f > 0.0) r = mix(r, sampleAnisoMip(tc, m + 1.0, slab, w), f);
-    return r;
+    float m = floor(lod), f = lod - m, coverage, coverageNext;
+    vec4 r = sampleAnisoMip(tc, m, slab, w, coverage);
+    if (f > 0.0) {
+        r = mix(r, sampleAnisoMip(tc, m + 1.0, slab, w, coverageNext), f);
+        coverage = mix(coverage, coverageNext, f);
+    }
+    // The mean radiance of the surfaces facing the cone, times the opacity.
+    return vec4(coverage > 1e-6 ? r.rgb / coverage * r.a : vec3(0.0), r.a);
 }
 #endif
 
@@ -95,7 +129,11 @@ vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
     return vec4(max(c, vec3(0.0)), a);
 #elif VCT_ANISO
     if (lod >= 1.0) return sampleAniso(tc, lod - 1.0, dir);
+#if VCT_SIDES
+    return mix(sampleSides(tc, dir), sampleAniso(tc, 0.0, dir), lod);
+#else
     return mix(levelRadiance(0, tc, lod), sampleAniso(tc, 0.0, dir), lod);
+#endif
 #else
     return levelRadiance(k, tc, lod);
 #endif

@@ -24,11 +24,15 @@ GI_CONST int kVCTAtomicTries = 256;    // cap of the running-average compare-and
 // Texture units of the trace, bounce and inject passes (above the G-buffer units 0..8).
 GI_CONST int kVCTUnitRadiance = 9;     // premultiplied radiance + opacity, with mips (one per level: 9 + level)
 GI_CONST int kVCTUnitAniso = 16;       // the six directional volumes +X -X +Y -Y +Z -Z side by side along x
+GI_CONST int kVCTUnitSides = 17;       // trace: the per-side exit radiance (six slabs along x, full resolution)
 GI_CONST int kVCTUnitSH = 22;          // R, G, B SH coefficient volumes (22..24)
 GI_CONST int kVCTUnitShadow2D = 9;     // inject: 2D shadow maps, one per light of the batch (9..12)
 GI_CONST int kVCTUnitShadowCube = 13;  // inject: cube shadow maps (13..16)
 GI_CONST int kVCTUnitSky = 25;         // trace: the environment's prefiltered cube (FrameContext::sky)
 GI_CONST int kVCTUnitMipSource = 0;    // mip: the volume read
+GI_CONST int kVCTUnitMipSourceCoverage = 1;  // mip (anisotropic): the coverage atlas read
+GI_CONST int kVCTUnitMipSides = 2;     // mip (anisotropic, first mip): level 0's sides
+GI_CONST int kVCTUnitAnisoCoverage = 18;  // trace: the anisotropic atlas's facing coverage
 GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
 GI_CONST int kVCTUnitLowSpecular = 3;
 GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
@@ -47,7 +51,10 @@ GI_CONST int kVCTImageSHG = 7;
 GI_CONST int kVCTImageSHB = 2;
 GI_CONST int kVCTImageBouncedFront = 5;  // bounce: direct plus gathered light, which resolve reads next
 GI_CONST int kVCTImageBouncedBack = 6;
+GI_CONST int kVCTImageSides = 2;       // voxelize, clear, inject: r32ui per-side normals, six slabs along x
+GI_CONST int kVCTImageSidesRadiance = 5;  // inject: RGBA16F per-side exit radiance times coverage, coverage
 GI_CONST int kVCTImageMipDest = 0;     // mip: the level written
+GI_CONST int kVCTImageMipDestCoverage = 1;  // mip (anisotropic): the coverage atlas's level written
 GI_CONST int kVCTImageIndirect = 0;    // trace (at traceScale) and upsample (full size): diffuse
 GI_CONST int kVCTImageSpecular = 1;    // and specular indirect light
 
@@ -80,6 +87,13 @@ GI_FUNC float vctConeStart(float nudge, float voxel, float nDotDir) {
 
 // Encodings of the voxel volumes (r32ui holding RGBA8: rgb = running average, a = sample count).
 GI_CONST float kVCTMaxCount = 255.0;
+// A fragment joins the side of axis a its normal faces when |n[a]| exceeds this.
+GI_CONST float kVCTSideMinCosine = 0.001;
+// inject: a side's shadow test lies this many voxels out from the voxel centre along its normal.
+GI_CONST float kVCTSideProbe = 0.5;
+// voxelize: how far (voxels) a surface thickens across a voxel boundary, and how far behind a face
+// a voxel centre may lie and still hold that face.
+GI_CONST float kVCTSideMargin = 0.05;
 
 struct VCTParams {
     // the grid (level) a pass works on: clear, voxelize, inject, resolve, compact, bounce, trace
@@ -95,10 +109,11 @@ struct VCTParams {
     int lightFirst;
     int lightCount;
     int accumulate;      // adds to the exit radiance of the earlier batches
-    float pad0;
+    int sides;           // voxelize, clear, inject: also the per-side volumes (anisotropic dense grids)
     int sliceAxis;       // voxelize: 0: each triangle along its dominant axis, grown (conservative);
                          // 1, 2, 3: along x, y, z, not grown, one cell per fragment (seed 001's slicing)
-    float pad2;
+    int fromSides;       // mip (anisotropic): 0 from the atlas's mip below, 1 from level 0's sides
+                         // (kVCTUnitMipSides), 2 from the isotropic level 0
     // mip
     ivec4 destSize;      // xyz: the level written, in voxels; w unused
     int sourceLevel;

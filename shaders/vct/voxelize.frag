@@ -12,6 +12,7 @@
 
 layout(binding = kVCTImageAlbedo, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform coherent volatile uimage3D uNormalVox;
+layout(binding = kVCTImageSides, r32ui) uniform coherent volatile uimage3D uSidesVox;
 
 in vec3 gGrid;
 in vec3 gNormal;
@@ -49,18 +50,40 @@ void main() {
     if (materialCut(base.a)) discard;
 
     float slope = 0.5 * (abs(dFdx(gGrid.z)) + abs(dFdy(gGrid.z)));
-    float z0 = clamp(gGrid.z - slope, gDepthRange.x, gDepthRange.y);
-    float z1 = clamp(gGrid.z + slope, gDepthRange.x, gDepthRange.y);
+    // With sides, a surface within kVCTSideMargin of a voxel boundary also fills the voxel across
+    // it, so each of its two faces has a voxel on its own side (below).
+    float margin = uVCT.sides != 0 ? kVCTSideMargin : 0.0;
+    float z0 = clamp(gGrid.z - slope - margin, gDepthRange.x - margin, gDepthRange.y + margin);
+    float z1 = clamp(gGrid.z + slope + margin, gDepthRange.x - margin, gDepthRange.y + margin);
     int first = int(floor(z0)), last = min(int(floor(z1)), int(floor(z0)) + 2);
     if (uVCT.sliceAxis > 0) first = last = int(floor(gGrid.z));  // slicing: the slice the pixel's centre lies in
 
     vec3 albedo = clamp(base.rgb * (1.0 - metallic), 0.0, 1.0);
     vec3 n = normal * 0.5 + 0.5;
+    vec3 g = unswizzle(vec3(gl_FragCoord.xy, gGrid.z), gAxis);  // the surface at the pixel, in voxels
     for (int z = first; z <= last; ++z) {
         ivec3 c = ivec3(unswizzle(vec3(floor(gl_FragCoord.xy), float(z)), gAxis));
+        vec3 offset = vec3(c) + 0.5 - g;  // the voxel centre from the surface
         if (any(lessThan(c, uVCT.clipMin.xyz)) || any(greaterThanEqual(c, uVCT.clipMax.xyz))) continue;
         c = (c + uVCT.wrapOffset.xyz) % uVCT.resolution;
         GI_RUNNING_AVERAGE(uAlbedoVox, c, albedo)
         GI_RUNNING_AVERAGE(uNormalVox, c, n)
+        if (uVCT.sides != 0)
+            for (int a = 0; a < 3; ++a)
+                if (abs(normal[a]) > kVCTSideMinCosine) {
+                    // Both faces (every surface is two-sided in the raster); a face goes into
+                    // this voxel unless the voxel's centre lies more than kVCTSideMargin behind it.
+                    vec3 facing = normal[a] < 0.0 ? -normal : normal;
+                    float d = dot(offset, facing);
+                    float h = 0.5 * (abs(facing.x) + abs(facing.y) + abs(facing.z)) - kVCTSideMargin;
+                    if (d > -h) {
+                        ivec3 cs = c + ivec3(2 * a * uVCT.resolution, 0, 0);
+                        GI_RUNNING_AVERAGE(uSidesVox, cs, facing * 0.5 + 0.5)
+                    }
+                    if (d < h) {
+                        ivec3 cs = c + ivec3((2 * a + 1) * uVCT.resolution, 0, 0);
+                        GI_RUNNING_AVERAGE(uSidesVox, cs, -facing * 0.5 + 0.5)
+                    }
+                }
     }
 }
