@@ -261,9 +261,13 @@ void VCT::buildMips() {
     mMipProg.use();
     // size: the destination's voxels per side; srcOffset, dstOffset: the first x of the
     // direction's slab in the anisotropic atlas (0 elsewhere).
+    // fromSides (anisotropic only): what mip.comp reads, 0 the atlas's mip below, 1 level 0's
+    // sides, 2 the isotropic level 0; the anisotropic passes also write the coverage atlas.
     auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction, int size,
-                     int srcOffset, int dstOffset) {
+                     int srcOffset, int dstOffset, int fromSides = 0) {
         vct::VCTParams p{};
+        p.resolution = mResolution;
+        p.fromSides = fromSides;
         p.sourceLevel = srcLevel;
         p.destSize = glm::ivec4(glm::ivec3(size), 0);
         p.direction = direction;
@@ -272,6 +276,10 @@ void VCT::buildMips() {
         mBlock.set(p);
         glBindTextureUnit(vct::kVCTUnitMipSource, src.id());
         glBindImageTexture(vct::kVCTImageMipDest, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        if (direction >= 0) {
+            glBindTextureUnit(vct::kVCTUnitMipSourceCoverage, mAnisoCoverage.id());
+            glBindImageTexture(vct::kVCTImageMipDestCoverage, mAnisoCoverage.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
+        }
         GLuint g = gl::groupCount(size, shared::kGroup3D);
         glDispatchCompute(g, g, g);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -282,33 +290,14 @@ void VCT::buildMips() {
         for (auto& t : mSH)
             for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1, mResolution >> m, 0, 0);
     if (mAnisotropic) {
-        // The first mip from level 0's sides and opacity, the rest from the mip below, each with
-        // its coverage (mip.comp).
+        // The first mip from level 0's sides (vct.faceSides) or its isotropic volume, the rest
+        // from the mip below, each with its coverage (mip.comp).
         if (mFaceSides) glBindTextureUnit(vct::kVCTUnitMipSides, mLevels[0].sidesRadiance.id());
-        auto directional = [&](const gl::Texture& src, int srcLevel, int dstLevel, int direction, int size, int srcOffset,
-                               int dstOffset, int fromSides) {
-            vct::VCTParams p{};
-            p.resolution = mResolution;
-            p.fromSides = fromSides;
-            p.sourceLevel = srcLevel;
-            p.destSize = glm::ivec4(glm::ivec3(size), 0);
-            p.direction = direction;
-            p.sourceOffsetX = srcOffset;
-            p.destOffsetX = dstOffset;
-            mBlock.set(p);
-            glBindTextureUnit(vct::kVCTUnitMipSource, src.id());
-            glBindTextureUnit(vct::kVCTUnitMipSourceCoverage, mAnisoCoverage.id());
-            glBindImageTexture(vct::kVCTImageMipDest, mAniso.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-            glBindImageTexture(vct::kVCTImageMipDestCoverage, mAnisoCoverage.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
-            GLuint g = gl::groupCount(size, shared::kGroup3D);
-            glDispatchCompute(g, g, g);
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        };
         const int half = mResolution / 2;
         for (int d = 0; d < 6; ++d) {
-            directional(mLevels[0].radiance, 0, 0, d, half, 0, d * half, mFaceSides ? 1 : 2);
+            level(mLevels[0].radiance, 0, mAniso, 0, d, half, 0, d * half, mFaceSides ? 1 : 2);
             for (int m = 1; m < mMipCount - 1; ++m)
-                directional(mAniso, m - 1, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m), 0);
+                level(mAniso, m - 1, mAniso, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m));
         }
     }
 }

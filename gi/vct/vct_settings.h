@@ -54,6 +54,7 @@ struct VCTSettings {
     // Anisotropic voxels keep each face of a surface on its own side (gi/vct/vct.h, "Face
     // sides"): a thin wall no longer shows its lit face to the room behind it. Off by default:
     // the two-room leak falls from 22 % to 3 %, but the shift test moves by up to 16 % (bound 5 %).
+    // The sides hold direct light only: with bounceCount > 1 the atlas misses the bounced light.
     bool faceSides = false;
     bool specularCone = true;         // trace one cone along the reflection, aperture from roughness
     float specularApertureMin = 1.0f;   // specular cone aperture at roughness 0, degrees
