@@ -53,6 +53,15 @@ using ProgramHandle = Handle<detail::deleteProgram>;
 using ShaderHandle = Handle<detail::deleteShader>;
 using Query = Handle<detail::deleteQuery>;
 using Sampler = Handle<detail::deleteSampler>;
+// A texture name without the shape gl::Texture keeps: buffer textures, which view a buffer's
+// storage (glTextureBuffer) and take no storage of their own.
+using TextureHandle = Handle<detail::deleteTexture>;
+
+inline TextureHandle createBufferTexture() {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &id);
+    return TextureHandle(id);
+}
 
 inline Buffer createBuffer(size_t bytes, const void* data, GLbitfield flags = 0) {
     GLuint id = 0;

@@ -127,6 +127,13 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
     for (const auto& l : fs.lights) rsmCount += rsmMaps(l, s.cascadeCount);
     {
         mResolution = s.gridResolution;
+        // propagate.comp views a grid as a buffer texture of 3 texels per cell.
+        GLint maxTexels = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+        if (double(cells(mResolution)) * kCoefficients / 4 > double(maxTexels))
+            throw Error("lpv.gridResolution: " + std::to_string(mResolution) + "^3 cells need " +
+                        std::to_string(cells(mResolution) * kCoefficients / 4) + " texels of a buffer texture; this GL allows " +
+                        std::to_string(maxTexels));
         mCascadeData.clear();
         mVolumeBytes = mGeometryBytes = 0;
         int r = mResolution;
@@ -386,13 +393,18 @@ void LPV::propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, i
     p.resolution = resolution;
     p.blocking = blocking ? 1 : 0;
     mBlock.set(p);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferSource, src);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferDestination, dst);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferAccum, accum);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, transmit);
+    // Buffer views of the grids (propagate.comp): re-pointed each step, as ping and pong swap.
+    glTextureBuffer(mSourceView.id(), GL_RGBA32F, src);
+    glTextureBuffer(mTransmitView.id(), GL_RGBA32F, transmit);
+    glTextureBuffer(mDestinationView.id(), GL_RGBA32F, dst);
+    glTextureBuffer(mAccumView.id(), GL_RGBA32F, accum);
+    glBindTextureUnit(kLPVUnitPropagateSource, mSourceView.id());
+    glBindTextureUnit(kLPVUnitPropagateTransmit, mTransmitView.id());
+    glBindImageTexture(kLPVImagePropagateDestination, mDestinationView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(kLPVImagePropagateAccum, mAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     GLuint g = gl::groupCount(resolution, shared::kGroup3D);
     glDispatchCompute(g, g, g);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void LPV::propagate(const FrameContext& ctx) {

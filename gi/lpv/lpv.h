@@ -163,6 +163,9 @@ private:
     gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
         mResolveProg, mShadeProg, mSkyProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
+    // propagate's views of its grids (propagateStep)
+    gl::TextureHandle mSourceView = gl::createBufferTexture(), mTransmitView = gl::createBufferTexture(),
+                      mDestinationView = gl::createBufferTexture(), mAccumView = gl::createBufferTexture();
     MaterialBinding mMaterialBinding;  // the RSM pass reads it
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;

@@ -44,10 +44,8 @@ GI_CONST int kLPVBufferInject = 0;           // inject: the SH grid it adds to
 GI_CONST int kLPVBufferGeometry = 0;         // geometry: the corner blocking it adds to
 GI_CONST int kLPVBufferGeometryRSM = 0;      // geometry_resolve: blocking from the RSMs
 GI_CONST int kLPVBufferGeometryGBuffer = 1;  // geometry_resolve: blocking from the G-buffer
-GI_CONST int kLPVBufferSource = 0;           // propagate: the step's input
-GI_CONST int kLPVBufferDestination = 1;      // propagate: the step's output
-GI_CONST int kLPVBufferAccum = 2;            // propagate adds to it, resolve reads it
-GI_CONST int kLPVBufferTransmit = 3;         // transmit writes it, propagate reads it
+GI_CONST int kLPVBufferAccum = 2;            // resolve reads it (propagate adds to it through kLPVImagePropagateAccum)
+GI_CONST int kLPVBufferTransmit = 3;         // transmit writes it, sky reads it (propagate through kLPVUnitPropagateTransmit)
 GI_CONST int kLPVBufferGeometryAlbedo = 1;   // geometry: the corners' albedo (RGB x coverage, coverage) it adds to
 // bounce: a bounce's propagated light, its injection (replaced by the next bounce's), the total
 // shade reads, and the corners' blocking (RSM, G-buffer) and albedo.
@@ -79,6 +77,12 @@ GI_CONST int kLPVUnitSky = 5;
 // Texture units. transmit samples the two geometry volumes.
 GI_CONST int kLPVUnitGeometryRSM = 0;
 GI_CONST int kLPVUnitGeometryGBuffer = 1;
+// propagate: buffer textures over the step's input and the transmittances, and buffer images over
+// its output and the accumulator (propagate.comp says why not shader storage)
+GI_CONST int kLPVUnitPropagateSource = 0;
+GI_CONST int kLPVUnitPropagateTransmit = 1;
+GI_CONST int kLPVImagePropagateDestination = 0;
+GI_CONST int kLPVImagePropagateAccum = 1;
 // shade: channel c of cascade k on kLPVUnitSH + kLPVSHChannels * k + c, past the G-buffer's units.
 GI_CONST int kLPVUnitSH = 8;
 

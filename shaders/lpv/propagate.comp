@@ -7,14 +7,19 @@
 // (a table of uniforms measured slower on llvmpipe).
 // Blocking scales the flux through a face by its transmittance, computed once per frame from the
 // geometry volume (transmit.comp).
+// The grids are read through buffer textures and written through buffer images that view the
+// same storage as the other passes' shader storage buffers: on llvmpipe a shader storage load
+// at a per-invocation address runs a loop over the SIMD lanes, one scalar load each, and the 18
+// vec4 loads of a cell's neighbours took 10 of a step's 11 ms at 32^3; texelFetch gathers all
+// lanes at once (a step 3.8 ms, same pixels).
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
-layout(std430, binding = kLPVBufferSource) readonly buffer Source { vec4 src[]; };  // 3 vec4 (R, G, B) per cell
-layout(std430, binding = kLPVBufferDestination) writeonly buffer Destination { vec4 dst[]; };
-layout(std430, binding = kLPVBufferAccum) buffer Accumulated { vec4 accum[]; };
-layout(std430, binding = kLPVBufferTransmit) readonly buffer Transmit { vec4 transmit[]; };  // from transmit.comp
+layout(binding = kLPVUnitPropagateSource) uniform samplerBuffer uSource;  // 3 texels (R, G, B) per cell
+layout(binding = kLPVUnitPropagateTransmit) uniform samplerBuffer uTransmit;  // 2 texels per cell, from transmit.comp
+layout(binding = kLPVImagePropagateDestination, rgba32f) uniform writeonly imageBuffer uDestination;
+layout(binding = kLPVImagePropagateAccum, rgba32f) uniform imageBuffer uAccum;
 
 const float kMainFace = 0.12753712;  // 0.4006696846 / pi
 const float kSideFace = 0.13478556;  // 0.4234413544 / pi
@@ -28,8 +33,8 @@ void main() {
     vec4 outR = vec4(0.0), outG = vec4(0.0), outB = vec4(0.0);
     vec4 t0 = vec4(1.0), t1 = vec4(1.0);
     if (uLPV.blocking != 0) {
-        t0 = transmit[cellIndex(cell, res) * 2];
-        t1 = transmit[cellIndex(cell, res) * 2 + 1];
+        t0 = texelFetch(uTransmit, cellIndex(cell, res) * 2);
+        t1 = texelFetch(uTransmit, cellIndex(cell, res) * 2 + 1);
     }
     float faceTransmit[6] = float[6](t0.x, t0.y, t0.z, t0.w, t1.x, t1.y);
     for (int d = 0; d < 6; ++d) {
@@ -37,7 +42,7 @@ void main() {
         ivec3 neighbour = cell - dir;  // light flows from the neighbour along dir
         if (!insideGrid(neighbour, res)) continue;
         int ni = cellIndex(neighbour, res) * 3;
-        vec4 r = src[ni], g = src[ni + 1], b = src[ni + 2];
+        vec4 r = texelFetch(uSource, ni), g = texelFetch(uSource, ni + 1), b = texelFetch(uSource, ni + 2);
         float transmit = faceTransmit[d];
         vec3 fd = vec3(dir);
         vec4 e = shBasis(fd);
@@ -56,10 +61,10 @@ void main() {
         }
     }
     int base = cellIndex(cell, res) * 3;
-    dst[base] = outR;
-    dst[base + 1] = outG;
-    dst[base + 2] = outB;
-    accum[base] += outR;
-    accum[base + 1] += outG;
-    accum[base + 2] += outB;
+    imageStore(uDestination, base, outR);
+    imageStore(uDestination, base + 1, outG);
+    imageStore(uDestination, base + 2, outB);
+    imageStore(uAccum, base, imageLoad(uAccum, base) + outR);
+    imageStore(uAccum, base + 1, imageLoad(uAccum, base + 1) + outG);
+    imageStore(uAccum, base + 2, imageLoad(uAccum, base + 2) + outB);
 }
