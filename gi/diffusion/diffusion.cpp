@@ -192,23 +192,35 @@ void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuin
     p.albedoMode = albedoMode == DiffusionAlbedo::Half ? 1 : 0;
     const GLuint groups = gl::groupCount(res, shared::kGroup3D);
     ensureOrderBuffers(res);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderSource, mOrder[mOrderParity].id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderDestination, mOrder[1 - mOrderParity].id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());
+    // Buffer views of the grids (emit.comp and gather.comp read and write through them).
+    glTextureBuffer(mSourceView.id(), GL_RGBA32F, source);
+    glTextureBuffer(mOrderSourceView.id(), GL_R32F, mOrder[mOrderParity].id());
+    glTextureBuffer(mOutgoingView.id(), GL_RGBA32F, outgoing);
+    glTextureBuffer(mDestinationView.id(), GL_RGBA32F, destination);
+    glTextureBuffer(mAccumView.id(), GL_RGBA32F, accum);
+    glTextureBuffer(mOrderDestinationView.id(), GL_R32F, mOrder[1 - mOrderParity].id());
+    glTextureBuffer(mOrderAccumView.id(), GL_R32F, mOrderAccum.id());
     mOrderParity = 1 - mOrderParity;
     mBlock.set(p);
+    const GLbitfield written = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT;
     glBindImageTexture(shared::kDiffusionImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(shared::kDiffusionImageNormal, normal, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     mEmitProg.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferSource, source);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOutgoing, outgoing);
+    glBindTextureUnit(shared::kDiffusionUnitStepSource, mSourceView.id());
+    glBindTextureUnit(shared::kDiffusionUnitStepOrder, mOrderSourceView.id());
+    glBindImageTexture(shared::kDiffusionImageStepOutgoing, mOutgoingView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(groups, groups, groups);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(written);
     mGatherProg.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferDestination, destination);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferAccum, accum);
+    glBindTextureUnit(shared::kDiffusionUnitStepSource, mOutgoingView.id());
+    glBindImageTexture(shared::kDiffusionImageStepDestination, mDestinationView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(shared::kDiffusionImageStepAccum, mAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(shared::kDiffusionImageStepOrderDestination, mOrderDestinationView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(shared::kDiffusionImageStepOrderAccum, mOrderAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     glDispatchCompute(groups, groups, groups);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(written);
+    glBindTextureUnit(shared::kDiffusionUnitStepSource, 0);
+    glBindTextureUnit(shared::kDiffusionUnitStepOrder, 0);
 }
 
 std::vector<DebugView> Diffusion::debugViews() const {

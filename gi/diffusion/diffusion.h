@@ -107,6 +107,11 @@ private:
     // Bounce orders (diffusion_shared.h): in flight, ping-pong beside the light, and accumulated;
     // sized by ensureOrderBuffers() for the resolution a step runs at.
     gl::Buffer mOrder[2], mOrderAccum;
+    // emit's and gather's views of the grids (propagateStep)
+    gl::TextureHandle mSourceView = gl::createBufferTexture(), mOrderSourceView = gl::createBufferTexture(),
+                      mOutgoingView = gl::createBufferTexture(), mDestinationView = gl::createBufferTexture(),
+                      mAccumView = gl::createBufferTexture(), mOrderDestinationView = gl::createBufferTexture(),
+                      mOrderAccumView = gl::createBufferTexture();
     int mOrderResolution = 0, mOrderParity = 0;
     DiffusionVoxelization mVoxelizedWith = DiffusionVoxelization::Conservative;
     VoxelBox mBox;

@@ -24,14 +24,22 @@ GI_CONST int kDiffusionImageViewBounces = 4;   // resolve: the mean bounce order
 // Shader storage bindings (7 to 10 are the frame's light buffers, common/light.h).
 GI_CONST int kDiffusionBufferSource = 0;       // 3 vec4 (R, G, B SH) per cell: the light in flight
 GI_CONST int kDiffusionBufferDestination = 1;  // the next step's
-GI_CONST int kDiffusionBufferOutgoing = 2;     // emit: 6 vec4 per cell, the flux (rgb) leaving through each face
 GI_CONST int kDiffusionBufferAccum = 3;        // 3 vec4 per cell: incoming light summed over the steps (occupied cells)
 // Bounce orders (one float per cell): the flux-weighted mean bounce order of the light in flight
 // (source and destination, ping-pong beside the light), and of the light accumulated, summed as
 // order times flux (the accumulation's band 0 gives the flux to divide by).
-GI_CONST int kDiffusionBufferOrderSource = 4;
 GI_CONST int kDiffusionBufferOrderDestination = 5;
 GI_CONST int kDiffusionBufferOrderAccum = 6;
+// emit and gather read the grids above through buffer textures and write them through buffer
+// images over the same storage (lpv/propagate.comp says why not shader storage on llvmpipe).
+// The outgoing flux: 6 vec4 per cell, the flux (rgb) leaving through each face, and its order (w).
+GI_CONST int kDiffusionUnitStepSource = 0;       // emit: the light in flight; gather: the outgoing flux
+GI_CONST int kDiffusionUnitStepOrder = 1;        // emit: the source's bounce orders (r32f)
+GI_CONST int kDiffusionImageStepOutgoing = 2;    // emit writes the outgoing flux
+GI_CONST int kDiffusionImageStepDestination = 2; // gather: the next step's light
+GI_CONST int kDiffusionImageStepAccum = 3;       // gather: the accumulation
+GI_CONST int kDiffusionImageStepOrderDestination = 4;  // gather: r32f
+GI_CONST int kDiffusionImageStepOrderAccum = 5;        // gather: r32f
 
 // The face transfer (seed 001 eq. 3.2.1-3.2.3, corrected, see propagate.glsl): the 2-band SH of
 // the indicator of the solid angle a cell's face subtends from its centre (2 pi / 3), towards

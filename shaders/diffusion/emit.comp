@@ -16,15 +16,15 @@
 
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
-layout(std430, binding = kDiffusionBufferSource) readonly buffer Source { vec4 src[]; };
-layout(std430, binding = kDiffusionBufferOutgoing) writeonly buffer Outgoing { vec4 outgoing[]; };
-layout(std430, binding = kDiffusionBufferOrderSource) readonly buffer OrderSource { float orderSrc[]; };
+layout(binding = kDiffusionUnitStepSource) uniform samplerBuffer uSource;  // 3 texels (R, G, B SH) per cell
+layout(binding = kDiffusionUnitStepOrder) uniform samplerBuffer uOrderSource;
+layout(binding = kDiffusionImageStepOutgoing, rgba32f) uniform writeonly imageBuffer uOutgoing;  // 6 per cell
 
 void main() {
     ivec3 cell = ivec3(gl_GlobalInvocationID);
     if (!insideGrid(cell)) return;
     int i = cellIndex(cell);
-    vec4 r = src[3 * i], g = src[3 * i + 1], b = src[3 * i + 2];
+    vec4 r = texelFetch(uSource, 3 * i), g = texelFetch(uSource, 3 * i + 1), b = texelFetch(uSource, 3 * i + 2);
     vec3 parts[6];
     vec3 total = vec3(0.0);
     if (r.x > 0.0 || g.x > 0.0 || b.x > 0.0) {
@@ -42,5 +42,6 @@ void main() {
     vec3 flux = 2.0 * sqrt(kPi) * max(vec3(r.x, g.x, b.x), vec3(0.0));
     vec3 scale = mix(vec3(0.0), flux / max(total, vec3(1e-30)), greaterThan(total, vec3(0.0)));
     // w: the bounce order of the light leaving (gather.comp).
-    for (int d = 0; d < 6; ++d) outgoing[6 * i + d] = vec4(parts[d] * scale, orderSrc[i]);
+    float order = texelFetch(uOrderSource, i).r;
+    for (int d = 0; d < 6; ++d) imageStore(uOutgoing, 6 * i + d, vec4(parts[d] * scale, order));
 }

@@ -17,11 +17,11 @@
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uNormal;
-layout(std430, binding = kDiffusionBufferOutgoing) readonly buffer Outgoing { vec4 outgoing[]; };
-layout(std430, binding = kDiffusionBufferDestination) writeonly buffer Destination { vec4 dst[]; };
-layout(std430, binding = kDiffusionBufferAccum) buffer Accumulated { vec4 accum[]; };
-layout(std430, binding = kDiffusionBufferOrderDestination) writeonly buffer OrderDestination { float orderDst[]; };
-layout(std430, binding = kDiffusionBufferOrderAccum) buffer OrderAccumulated { float orderAccum[]; };
+layout(binding = kDiffusionUnitStepSource) uniform samplerBuffer uOutgoing;  // 6 texels per cell, from emit.comp
+layout(binding = kDiffusionImageStepDestination, rgba32f) uniform writeonly imageBuffer uDestination;
+layout(binding = kDiffusionImageStepAccum, rgba32f) uniform imageBuffer uAccum;
+layout(binding = kDiffusionImageStepOrderDestination, r32f) uniform writeonly imageBuffer uOrderDestination;
+layout(binding = kDiffusionImageStepOrderAccum, r32f) uniform imageBuffer uOrderAccum;
 
 void main() {
     ivec3 cell = ivec3(gl_GlobalInvocationID);
@@ -32,7 +32,7 @@ void main() {
     float flux = 0.0, order = 0.0;
     for (int d = 0; d < 6; ++d) {
         ivec3 from = cell - kDirections[d];
-        vec4 o = insideGrid(from) ? outgoing[6 * cellIndex(from) + d] : vec4(0.0);
+        vec4 o = insideGrid(from) ? texelFetch(uOutgoing, 6 * cellIndex(from) + d) : vec4(0.0);
         arriving[d] = o.rgb;
         arrived = arrived || arriving[d] != vec3(0.0);
         float f = o.r + o.g + o.b;
@@ -50,10 +50,10 @@ void main() {
     uint packedAlbedo = imageLoad(uAlbedo, cell).r;
     if (occupied(packedAlbedo)) {
         if (arrived) {
-            accum[3 * i] += r;
-            accum[3 * i + 1] += g;
-            accum[3 * i + 2] += b;
-            orderAccum[i] += flux * order;
+            imageStore(uAccum, 3 * i, imageLoad(uAccum, 3 * i) + r);
+            imageStore(uAccum, 3 * i + 1, imageLoad(uAccum, 3 * i + 1) + g);
+            imageStore(uAccum, 3 * i + 2, imageLoad(uAccum, 3 * i + 2) + b);
+            imageStore(uOrderAccum, i, imageLoad(uOrderAccum, i) + flux * order);
         }
         vec3 n = meanNormal(imageLoad(uNormal, cell).r);
         vec3 front = vec3(0.0), back = vec3(0.0);
@@ -73,8 +73,8 @@ void main() {
         b = front.b * lf + back.b * lb;
         order = arrived ? order + 1.0 : 0.0;
     }
-    orderDst[i] = order;
-    dst[3 * i] = r;
-    dst[3 * i + 1] = g;
-    dst[3 * i + 2] = b;
+    imageStore(uOrderDestination, i, vec4(order));
+    imageStore(uDestination, 3 * i, r);
+    imageStore(uDestination, 3 * i + 1, g);
+    imageStore(uDestination, 3 * i + 2, b);
 }
