@@ -192,8 +192,9 @@ TEST_F(GL, EveryPassIsTimedAndReportsMemory) {
     }
     EXPECT_EQ(names, (std::vector<std::string>{"shadows", "gbuffer", "indirect", "ssao", "lighting", "tonemap"}));
     EXPECT_GT(total, 0.0) << "a frame that took no time was not timed";
-    // The G-buffer's five targets (RGBA8, RGBA16F, RGBA8, RGBA16F, depth 32F) and the HDR image.
-    EXPECT_EQ(gbuffer, size_t(kSize) * kSize * (4 + 8 + 4 + 8 + 4));
+    // The G-buffer's five targets (RGBA8, RGBA16F, RGBA8, RGBA16F, depth 32F with stencil 8,
+    // which takes 8 bytes) and the HDR image.
+    EXPECT_EQ(gbuffer, size_t(kSize) * kSize * (4 + 8 + 4 + 8 + 8));
     EXPECT_EQ(lighting, size_t(kSize) * kSize * 8);
     EXPECT_GT(r.memoryBytes(), size_t(kSize) * kSize * 40);
     // Views of buffers that hold a picture show one: more than one colour, not all black.

@@ -25,7 +25,7 @@ size_t bytesPerTexel(GLenum f) {
         case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_R32UI: case GL_RG16F:
         case GL_DEPTH_COMPONENT32F: case GL_DEPTH_COMPONENT24: case GL_DEPTH24_STENCIL8: case GL_RGB10_A2: case GL_R11F_G11F_B10F:
             return 4;
-        case GL_RGBA16F: case GL_RG32F: return 8;
+        case GL_RGBA16F: case GL_RG32F: case GL_DEPTH32F_STENCIL8: return 8;
         case GL_RGB32F: return 12;
         case GL_RGBA32F: return 16;
     }

@@ -87,6 +87,7 @@ std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& scene
 
 LPV::LPV()
     : mRSMProg("lpv.rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}),
+      mRSMOpaqueProg("lpv.rsmOpaque", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {"ALPHA_CUT=0"}),
       mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}),
       mGeometryProg("lpv.geometry", {{GL_COMPUTE_SHADER, "lpv/geometry.comp"}}),
       mGeometryResolveProg("lpv.geometryResolve", {{GL_COMPUTE_SHADER, "lpv/geometry_resolve.comp"}}),
@@ -97,10 +98,11 @@ LPV::LPV()
       mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}),
       mSkyProg("lpv.sky", {{GL_COMPUTE_SHADER, "lpv/sky.comp"}}),
       mBlock(kLPVBlockName, kLPVBlockBinding) {
-    for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
+    for (gl::Program* p : {&mRSMProg, &mRSMOpaqueProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
                            &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})
         mBlock.requireIn(*p);
     mMaterialBinding.requireIn(mRSMProg);
+    mMaterialBinding.requireIn(mRSMOpaqueProg);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
 }
 
@@ -209,7 +211,6 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mRSMResolution, mRSMResolution);
-    mRSMProg.use();
     // Draws the scene into map m, with the light's entry li in the light buffer.
     auto draw = [&](RSM& m, size_t li) {
         glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
@@ -226,7 +227,12 @@ void LPV::renderRSMs(const FrameContext& ctx) {
         mBlock.set(p);
         // The material changes per draw: its own block (common/material_shared.h).
         mMaterialBinding.begin(0);
-        ctx.scene.draw([&](const Material& mat, int) { mMaterialBinding.bind(ctx.scene, mat); });
+        // Opaque materials first, with the variant that tests depth before shading, then the rest.
+        auto bind = [&](const Material& mat, int) { mMaterialBinding.bind(ctx.scene, mat); };
+        mRSMOpaqueProg.use();
+        ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode == AlphaMode::Opaque; }, bind);
+        mRSMProg.use();
+        ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode != AlphaMode::Opaque; }, bind);
         mMaterialBinding.end();
     };
     size_t index = 0;
@@ -622,7 +628,7 @@ std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLight
 
 bool LPV::reloadShaders(std::string& log) {
     bool ok = true;
-    for (gl::Program* p : {&mRSMProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
+    for (gl::Program* p : {&mRSMProg, &mRSMOpaqueProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
                            &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})
         if (!p->reload()) {
             ok = false;

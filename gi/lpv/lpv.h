@@ -160,7 +160,7 @@ private:
         gl::Texture shR, shG, shB, geometryRSMVolume, geometryGBufferVolume;
     };
 
-    gl::Program mRSMProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
+    gl::Program mRSMProg, mRSMOpaqueProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
         mResolveProg, mShadeProg, mSkyProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
     // propagate's views of its grids (propagateStep)

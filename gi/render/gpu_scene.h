@@ -20,8 +20,14 @@ public:
     // gl_PrimitiveID 0 in per-triangle buffers such as uTriangleEmitter).
     template <class F>
     void draw(F&& bindMaterial) const {
+        drawIf([](const Material&) { return true; }, bindMaterial);
+    }
+    // The draws whose material `include(material)` accepts, in the scene's order.
+    template <class P, class F>
+    void drawIf(P&& include, F&& bindMaterial) const {
         glBindVertexArray(mVAO.id());
         for (const Draw& d : mDraws) {
+            if (!include(mMaterials[d.material])) continue;
             if constexpr (std::is_invocable_v<F, const Material&, int, int>)
                 bindMaterial(mMaterials[d.material], d.material, int(d.firstIndex / 3));
             else

@@ -52,9 +52,14 @@ constexpr size_t kTargetBytesPerPixel = 8 + 8 + 8 + 4;        // indirect, indir
 }  // namespace
 
 Renderer::Renderer()
-    : mGBufferProg("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}),
+    : mDepthProg("depthPrepass", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/depth.frag"}}),
+      mGBufferProg("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}),
+      mGBufferOpaqueProg("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
+                         {"ALPHA_CUT=0"}),
       mShadowProg("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
                   {"LINEAR_DEPTH=0"}),
+      mShadowOpaqueProg("shadowOpaque", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
+                        {"LINEAR_DEPTH=0", "ALPHA_CUT=0"}),
       mShadowPointProg("shadowPoint", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
                        {"LINEAR_DEPTH=1"}),
       mCompositeProg(gl::fullscreenProgram("composite", "render/composite.frag")),
@@ -62,9 +67,11 @@ Renderer::Renderer()
       mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
       mBlock(kRenderBlockName, kRenderBlockBinding) {
-    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg})
+    for (gl::Program* p : {&mGBufferProg, &mGBufferOpaqueProg, &mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg,
+                            &mLightProg, &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
-    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
+    for (gl::Program* p : {&mGBufferProg, &mGBufferOpaqueProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg})
+        mMaterialBinding.requireIn(*p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
     for (const PassInfo& info : passRegistry())
         if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
@@ -141,7 +148,8 @@ void Renderer::resize(int width, int height) {
     mNormal = gl::Texture::create2D(GL_RGBA16F, width, height);
     mMaterial = gl::Texture::create2D(GL_RGBA8, width, height);
     mEmissive = gl::Texture::create2D(GL_RGBA16F, width, height);
-    mDepth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+    // Stencil beside the depth: the G-buffer pass keeps the first surface drawn at a pixel (renderGBuffer).
+    mDepth = gl::Texture::create2D(GL_DEPTH32F_STENCIL8, width, height);
     mIndirect = gl::Texture::create2D(GL_RGBA16F, width, height);
     mIndirectSpecular = gl::Texture::create2D(GL_RGBA16F, width, height);
     mHDR = gl::Texture::create2D(GL_RGBA16F, width, height);
@@ -152,7 +160,7 @@ void Renderer::resize(int width, int height) {
     glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT1, mNormal.id(), 0);
     glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT2, mMaterial.id(), 0);
     glNamedFramebufferTexture(mGBufferFBO.id(), GL_COLOR_ATTACHMENT3, mEmissive.id(), 0);
-    glNamedFramebufferTexture(mGBufferFBO.id(), GL_DEPTH_ATTACHMENT, mDepth.id(), 0);
+    glNamedFramebufferTexture(mGBufferFBO.id(), GL_DEPTH_STENCIL_ATTACHMENT, mDepth.id(), 0);
     const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
     glNamedFramebufferDrawBuffers(mGBufferFBO.id(), 4, bufs);
     gl::checkFramebuffer(mGBufferFBO.id(), "G-buffer framebuffer incomplete");
@@ -301,14 +309,24 @@ void Renderer::renderShadows(const FrameSettings& fs) {
     glViewport(0, 0, mShadowSize, mShadowSize);
     mMaterialBinding.begin(mMaterialSampler.id());
 
-    // `params` holds the face's projection; the material block is uploaded per draw.
-    auto drawScene = [&](RenderParams& params) {
+    // `params` holds the face's projection; the material block is uploaded per draw. With
+    // `opaque`, Opaque materials first with that program, then the rest with `cut`.
+    auto drawScene = [&](RenderParams& params, gl::Program* opaque, gl::Program& cut) {
         // Per draw: the draw's first triangle (an area light's map leaves its own surface out).
-        mScene->draw([&](const Material& m, int, int firstTriangle) {
+        auto bind = [&](const Material& m, int, int firstTriangle) {
             params.firstTriangle = firstTriangle;
             mBlock.set(params);
             mMaterialBinding.bind(*mScene, m);
-        });
+        };
+        if (!opaque) {
+            cut.use();
+            mScene->draw(bind);
+            return;
+        }
+        opaque->use();
+        mScene->drawIf([](const Material& m) { return m.alphaMode == AlphaMode::Opaque; }, bind);
+        cut.use();
+        mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind);
     };
 
     for (size_t i = 0; i < fs.lights.size(); ++i) {
@@ -319,7 +337,6 @@ void Renderer::renderShadows(const FrameSettings& fs) {
         const light::GPULight& g = mLightBuffer[i];
         const float far = g.shadow.x;
         if (light::cubeShadow(int(l.type))) {
-            mShadowPointProg.use();
             RenderParams params{};
             params.lightPos = glm::vec4(l.position, 1.0f);
             params.shadowFar = far;
@@ -329,16 +346,15 @@ void Renderer::renderShadows(const FrameSettings& fs) {
                 glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[face].id());
                 glClear(GL_DEPTH_BUFFER_BIT);
                 params.viewProj = cubeFaceViewProj(l.position, face, far);
-                drawScene(params);
+                drawScene(params, nullptr, mShadowPointProg);
             }
         } else {
-            mShadowProg.use();
             glBindFramebuffer(GL_FRAMEBUFFER, sm.fbos[0].id());
             glClear(GL_DEPTH_BUFFER_BIT);
             RenderParams params{};
             params.skipEmitter = -1;
             params.viewProj = g.shadowViewProj;
-            drawScene(params);
+            drawScene(params, &mShadowOpaqueProg, mShadowProg);
         }
     }
     mMaterialBinding.end();
@@ -350,23 +366,44 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glViewport(0, 0, mWidth, mHeight);
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(mGBufferFBO.id(), GL_COLOR, i, zero);
-    const float one = 1.0f;
-    glClearNamedFramebufferfv(mGBufferFBO.id(), GL_DEPTH, 0, &one);
+    glClearNamedFramebufferfi(mGBufferFBO.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    mGBufferProg.use();
     RenderParams params{};
     params.viewProj = viewProj;
     mMaterialBinding.begin(mMaterialSampler.id());
     // Per draw: the draw's first triangle (to find each triangle's emitter) and the material.
-    mScene->draw([&](const Material& m, int, int firstTriangle) {
+    // Opaque materials first, with the program that tests depth before shading (gbuffer.frag).
+    auto bind = [&](const Material& m, int, int firstTriangle) {
         params.firstTriangle = firstTriangle;
         mBlock.set(params);
         mMaterialBinding.bind(*mScene, m);
-    });
+    };
+    auto opaque = [](const Material& m) { return m.alphaMode == AlphaMode::Opaque; };
+    // Depth first (depth.frag), then the G-buffer where the depth is equal: each pixel's
+    // nearest opaque surface is shaded once.
+    mDepthProg.use();
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    mBlock.set(params);
+    mScene->drawIf(opaque, [](const Material&, int) {});
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    // Where two surfaces lie at the same depth (coincident faces), the first drawn wins, as it
+    // did with a single GL_LESS pass: the stencil counts the writes and admits only the first.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    mGBufferOpaqueProg.use();
+    mScene->drawIf(opaque, bind);
+    glDisable(GL_STENCIL_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    mGBufferProg.use();
+    mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind);
     mMaterialBinding.end();
 }
 
@@ -457,7 +494,8 @@ bool Renderer::reloadShaders(std::string& log) {
     log.clear();
     for (ActivePass& p : mPasses)
         if (!p.pass->reloadShaders(log)) ok = false;
-    for (gl::Program* p : {&mGBufferProg, &mShadowProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
+    for (gl::Program* p : {&mGBufferProg, &mGBufferOpaqueProg, &mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg,
+                            &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

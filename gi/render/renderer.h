@@ -121,7 +121,10 @@ private:
     };
 
     std::unique_ptr<GPUScene> mScene;
-    gl::Program mGBufferProg, mShadowProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
+    // The G-buffer and directional shadow programs come in two variants: for Opaque materials
+    // without discard (early depth testing), and for Mask and Blend ones (their draws go last).
+    gl::Program mDepthProg, mGBufferProg, mGBufferOpaqueProg, mShadowProg, mShadowOpaqueProg, mShadowPointProg, mCompositeProg, mLightProg,
+        mToneProg, mViewProg;
     gl::UniformBlock<shared::RenderParams> mBlock;  // every program above reads it
     MaterialBinding mMaterialBinding;  // the G-buffer and shadow programs read it
     gl::VertexArray mEmptyVAO;

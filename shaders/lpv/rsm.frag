@@ -4,6 +4,10 @@
 // cube), so the total does not depend on the map's resolution. The intensity towards the texel
 // is the light model's, color * lightProfile(l, dist, cosAxis), whatever the light's kind. The
 // light is entry lightIndex of the frame's light buffer.
+// ALPHA_CUT 0: the variant for Opaque materials, without discard (render/gbuffer.frag says why).
+#ifndef ALPHA_CUT
+#define ALPHA_CUT 1
+#endif
 #include "common/light.h"
 #include "common/material.glsl"
 #include "lpv/lpv_shared.h"
@@ -25,7 +29,9 @@ void main() {
     vec4 base = materialBaseColor(vUV, vUV1);
     vec3 n = materialNormal(vNormal, vTangent, gl_FrontFacing, vUV, vUV1);
     float metallic = materialRoughnessMetallic(vUV, vUV1).y;
+#if ALPHA_CUT
     if (materialCut(base.a)) discard;
+#endif
     GPULight l = uLights[uLPV.lightIndex];
     vec3 L;  // towards the light
     vec3 flux;

@@ -5,6 +5,12 @@
 // normal so single-sheet geometry (curtains, leaves) is lit from both sides; a single-sided
 // material's back faces emit nothing. Occlusion is stored as 1 - occlusion so surfaces without
 // the map keep 0 there.
+// ALPHA_CUT 0 (the renderer's variant for Opaque materials) has no discard at all: on llvmpipe a
+// shader that may discard tests depth after shading, so every hidden fragment paid for its five
+// texture reads; without one the depth test runs first.
+#ifndef ALPHA_CUT
+#define ALPHA_CUT 1
+#endif
 #include "render/render_shared.h"
 #include "common/material.glsl"
 #include "common/light.h"
@@ -25,7 +31,9 @@ void main() {
     vec2 rm = materialRoughnessMetallic(vUV, vUV1);
     float occlusion = materialOcclusion(vUV, vUV1);
     vec3 emission = materialEmission(gl_FrontFacing, vUV, vUV1);
+#if ALPHA_CUT
     if (materialCut(base.a)) discard;
+#endif
     oAlbedo = vec4(base.rgb, 1.0);
     oNormal = vec4(n, 1.0);
     oMaterial = vec4(rm, 1.0 - occlusion, 1.0);

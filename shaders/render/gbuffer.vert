@@ -11,6 +11,8 @@ out vec3 vNormal;
 out vec4 vTangent;
 out vec2 vUV;
 out vec2 vUV1;
+// The depth pre-pass (depth.frag) and the G-buffer pass compare depths for equality.
+invariant gl_Position;
 
 void main() {
     vNormal = aNormal;
