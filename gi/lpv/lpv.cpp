@@ -451,15 +451,22 @@ void LPV::propagate(const FrameContext& ctx) {
             LPVParams p{};
             p.resolution = mResolution;
             mBlock.set(p);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceGather, c.gather.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceInject, c.inject.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceTotal, c.accum.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceGeometryRSM, c.geometryRSM.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceGeometryGBuffer, c.geometryGBuffer.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferBounceAlbedo, c.albedo.id());
+            // Buffer views (bounce.comp); the propagation's views are re-pointed here.
+            glTextureBuffer(mSourceView.id(), GL_RGBA32F, c.gather.id());
+            glTextureBuffer(mGeometryRSMView.id(), GL_RGBA32F, c.geometryRSM.id());
+            glTextureBuffer(mGeometryGBufferView.id(), GL_RGBA32F, c.geometryGBuffer.id());
+            glTextureBuffer(mAlbedoView.id(), GL_RGBA32F, c.albedo.id());
+            glTextureBuffer(mDestinationView.id(), GL_RGBA32F, c.inject.id());
+            glTextureBuffer(mAccumView.id(), GL_RGBA32F, c.accum.id());
+            glBindTextureUnit(kLPVUnitBounceGather, mSourceView.id());
+            glBindTextureUnit(kLPVUnitBounceGeometryRSM, mGeometryRSMView.id());
+            glBindTextureUnit(kLPVUnitBounceGeometryGBuffer, mGeometryGBufferView.id());
+            glBindTextureUnit(kLPVUnitBounceAlbedo, mAlbedoView.id());
+            glBindImageTexture(kLPVImageBounceInject, mDestinationView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+            glBindImageTexture(kLPVImageBounceTotal, mAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
             GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
             glDispatchCompute(g, g, g);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }
     }
     mResolveProg.use();
@@ -467,7 +474,8 @@ void LPV::propagate(const FrameContext& ctx) {
     p.resolution = mResolution;
     mBlock.set(p);
     for (auto& c : mCascadeData) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferAccum, c.accum.id());
+        glTextureBuffer(mAccumView.id(), GL_RGBA32F, c.accum.id());
+        glBindTextureUnit(kLPVUnitResolveAccum, mAccumView.id());
         glBindImageTexture(kLPVImageSHR, c.shR.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageSHG, c.shG.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageSHB, c.shB.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);

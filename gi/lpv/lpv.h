@@ -163,9 +163,11 @@ private:
     gl::Program mRSMProg, mRSMOpaqueProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
         mResolveProg, mShadeProg, mSkyProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
-    // propagate's views of its grids (propagateStep)
+    // propagate's views of its grids (propagateStep), which bounce and resolve re-point too
     gl::TextureHandle mSourceView = gl::createBufferTexture(), mTransmitView = gl::createBufferTexture(),
-                      mDestinationView = gl::createBufferTexture(), mAccumView = gl::createBufferTexture();
+                      mDestinationView = gl::createBufferTexture(), mAccumView = gl::createBufferTexture(),
+                      mGeometryRSMView = gl::createBufferTexture(), mGeometryGBufferView = gl::createBufferTexture(),
+                      mAlbedoView = gl::createBufferTexture();
     MaterialBinding mMaterialBinding;  // the RSM pass reads it
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;

@@ -17,30 +17,31 @@
 
 #include "common/shared.h"
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
-layout(std430, binding = kLPVBufferBounceGather) readonly buffer Gather { vec4 gathered[]; };  // 3 vec4 (R, G, B) per cell
-layout(std430, binding = kLPVBufferBounceInject) buffer Inject { vec4 injected[]; };
-layout(std430, binding = kLPVBufferBounceTotal) buffer Total { vec4 total[]; };
-layout(std430, binding = kLPVBufferBounceGeometryRSM) readonly buffer FromRSM { vec4 fromRSM[]; };  // one per corner
-layout(std430, binding = kLPVBufferBounceGeometryGBuffer) readonly buffer FromGBuffer { vec4 fromGBuffer[]; };
-layout(std430, binding = kLPVBufferBounceAlbedo) readonly buffer Albedo { vec4 albedo[]; };  // RGB x coverage, coverage
+// Buffer views of the grids (propagate.comp says why not shader storage).
+layout(binding = kLPVUnitBounceGather) uniform samplerBuffer uGathered;  // 3 texels (R, G, B) per cell
+layout(binding = kLPVUnitBounceGeometryRSM) uniform samplerBuffer uFromRSM;  // one per corner
+layout(binding = kLPVUnitBounceGeometryGBuffer) uniform samplerBuffer uFromGBuffer;
+layout(binding = kLPVUnitBounceAlbedo) uniform samplerBuffer uAlbedo;  // RGB x coverage, coverage
+layout(binding = kLPVImageBounceInject, rgba32f) uniform imageBuffer uInjected;
+layout(binding = kLPVImageBounceTotal, rgba32f) uniform imageBuffer uTotal;
 
 void main() {
     const int res = uLPV.resolution;
     ivec3 cell = ivec3(gl_GlobalInvocationID);
     if (!insideGrid(cell, res)) return;
     int base = cellIndex(cell, res) * 3;
-    vec4 pR = gathered[base], pG = gathered[base + 1], pB = gathered[base + 2];
-    total[base] += injected[base] + pR;
-    total[base + 1] += injected[base + 1] + pG;
-    total[base + 2] += injected[base + 2] + pB;
+    vec4 pR = texelFetch(uGathered, base), pG = texelFetch(uGathered, base + 1), pB = texelFetch(uGathered, base + 2);
+    imageStore(uTotal, base, imageLoad(uTotal, base) + imageLoad(uInjected, base) + pR);
+    imageStore(uTotal, base + 1, imageLoad(uTotal, base + 1) + imageLoad(uInjected, base + 1) + pG);
+    imageStore(uTotal, base + 2, imageLoad(uTotal, base + 2) + imageLoad(uInjected, base + 2) + pB);
     vec4 outR = vec4(0.0), outG = vec4(0.0), outB = vec4(0.0);
     int r1 = res + 1;
     for (int i = 0; i < 8; ++i) {
         ivec3 g = cell + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
         int gi = (g.z * r1 + g.y) * r1 + g.x;
-        vec4 a = fromRSM[gi], b = fromGBuffer[gi];
+        vec4 a = texelFetch(uFromRSM, gi), b = texelFetch(uFromGBuffer, gi);
         vec4 gv = a.x >= b.x ? a : b;
-        vec4 alb = albedo[gi];
+        vec4 alb = texelFetch(uAlbedo, gi);
         if (gv.x <= 0.0 || alb.w <= 0.0) continue;
         vec3 dir = vec3(-gv.w, -gv.y, gv.z);  // band 1 of cosLobe(n) is kCosLobe1 * (-n.y, n.z, -n.x)
         float len = length(dir);
@@ -57,7 +58,7 @@ void main() {
         outG += reflected.g * gv;
         outB += reflected.b * gv;
     }
-    injected[base] = outR;
-    injected[base + 1] = outG;
-    injected[base + 2] = outB;
+    imageStore(uInjected, base, outR);
+    imageStore(uInjected, base + 1, outG);
+    imageStore(uInjected, base + 2, outB);
 }

@@ -49,12 +49,7 @@ GI_CONST int kLPVBufferTransmit = 3;         // transmit writes it, sky reads it
 GI_CONST int kLPVBufferGeometryAlbedo = 1;   // geometry: the corners' albedo (RGB x coverage, coverage) it adds to
 // bounce: a bounce's propagated light, its injection (replaced by the next bounce's), the total
 // shade reads, and the corners' blocking (RSM, G-buffer) and albedo.
-GI_CONST int kLPVBufferBounceGather = 0;
-GI_CONST int kLPVBufferBounceInject = 1;
-GI_CONST int kLPVBufferBounceTotal = 2;
-GI_CONST int kLPVBufferBounceGeometryRSM = 3;
-GI_CONST int kLPVBufferBounceGeometryGBuffer = 4;
-GI_CONST int kLPVBufferBounceAlbedo = 5;
+// (bounce reads and writes its buffers through buffer textures and images, below.)
 
 // Image bindings. The RSM's three images (inject reads all, geometry normal and position).
 GI_CONST int kLPVImageFlux = 0;
@@ -83,6 +78,16 @@ GI_CONST int kLPVUnitPropagateSource = 0;
 GI_CONST int kLPVUnitPropagateTransmit = 1;
 GI_CONST int kLPVImagePropagateDestination = 0;
 GI_CONST int kLPVImagePropagateAccum = 1;
+// bounce, likewise: the gathered light, the two geometry volumes and the albedo as buffer
+// textures; the injection (replaced) and the total (added to) as buffer images.
+GI_CONST int kLPVUnitBounceGather = 0;
+GI_CONST int kLPVUnitBounceGeometryRSM = 1;
+GI_CONST int kLPVUnitBounceGeometryGBuffer = 2;
+GI_CONST int kLPVUnitBounceAlbedo = 3;
+GI_CONST int kLPVImageBounceInject = 0;
+GI_CONST int kLPVImageBounceTotal = 1;
+// resolve: the accumulated SH as a buffer texture
+GI_CONST int kLPVUnitResolveAccum = 0;
 // shade: channel c of cascade k on kLPVUnitSH + kLPVSHChannels * k + c, past the G-buffer's units.
 GI_CONST int kLPVUnitSH = 8;
 

@@ -3,7 +3,7 @@
 
 #include "common/shared.h"
 layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
-layout(std430, binding = kLPVBufferAccum) readonly buffer Accumulated { float accum[]; };
+layout(binding = kLPVUnitResolveAccum) uniform samplerBuffer uAccum;  // 3 texels (R, G, B) per cell
 layout(binding = kLPVImageSHR, rgba16f) uniform writeonly image3D uR;
 layout(binding = kLPVImageSHG, rgba16f) uniform writeonly image3D uG;
 layout(binding = kLPVImageSHB, rgba16f) uniform writeonly image3D uB;
@@ -11,8 +11,8 @@ layout(binding = kLPVImageSHB, rgba16f) uniform writeonly image3D uB;
 void main() {
     ivec3 c = ivec3(gl_GlobalInvocationID);
     if (!insideGrid(c)) return;
-    int b = cellIndex(c) * 12;
-    imageStore(uR, c, vec4(accum[b], accum[b + 1], accum[b + 2], accum[b + 3]));
-    imageStore(uG, c, vec4(accum[b + 4], accum[b + 5], accum[b + 6], accum[b + 7]));
-    imageStore(uB, c, vec4(accum[b + 8], accum[b + 9], accum[b + 10], accum[b + 11]));
+    int b = cellIndex(c) * 3;
+    imageStore(uR, c, texelFetch(uAccum, b));
+    imageStore(uG, c, texelFetch(uAccum, b + 1));
+    imageStore(uB, c, texelFetch(uAccum, b + 2));
 }
