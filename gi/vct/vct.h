@@ -21,7 +21,18 @@
 //      re-injection of the first traced indirect light), then resolve and mips again.
 //   4. Mips [vct.mip]: a box filter of premultiplied RGBA (or SH); with `anisotropic`, six
 //      volumes of half resolution, one per marching direction, each compositing the children's
-//      pairs front to back along it (seed 003 section 1.6 describes them, unimplemented there).
+//      pairs front to back along it (seed 003 section 1.6 describes them, unimplemented there),
+//      with a coverage atlas beside them (mip.comp).
+//
+// Face sides (`faceSides`, a developer setting, off): anisotropic voxels that keep each face of a
+// surface on its own side, for thin walls (issue 13 item 6). The voxelizer also writes six
+// per-side normal volumes (both faces of every fragment; a face skips a voxel lying wholly behind
+// it; a surface within kVCTSideMargin of a voxel boundary also fills the voxel across it),
+// injection lights each side under its own normal (inject.comp), and the atlas is built from the
+// sides facing back along each direction, so a cone sees the mean radiance of the faces turned
+// towards it and nothing of a face turned away. The two-room leak falls from 21.6 % to 2.8 %,
+// but the shift test moves by up to 16 % and vct_cornell's SSIM falls 0.824 -> 0.768 (back-facing
+// and grazing voxels become black occluders), so it stays off; the sides hold direct light only.
 //   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
 //      specular cone along the reflection gives radiance for the composite's split-sum weight;
 //      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With
