@@ -1,5 +1,6 @@
 // GL tests on the headless EGL context (Mesa llvmpipe in CI): direct light against the analytic
 // radiance, shadows, shader errors and reload, determinism and the memory budget.
+#include "gi/gl/buffer_texture.h"
 #include "gi/gl/shader.h"
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
@@ -62,6 +63,22 @@ TEST_F(GL, ContextIsOpenGL45Core) {
     EXPECT_GE(major * 10 + minor, 45);
     EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
     std::printf("renderer: %s\n", glRendererString().c_str());
+}
+
+// The grids LPV and diffusion view as buffer textures: one past this GL's limit is refused with
+// the setting named, one within it passes.
+TEST_F(GL, BufferTextureLimitIsCheckedNamingTheSetting) {
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max);
+    ASSERT_GE(max, 65536) << "GL 4.5's minimum";
+    EXPECT_NO_THROW(gl::requireBufferTexels(size_t(max), "lpv.gridResolution"));
+    try {
+        gl::requireBufferTexels(size_t(max) + 1, "lpv.gridResolution");
+        FAIL() << "a view one texel past the limit was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("lpv.gridResolution: ", 0), 0u) << e.what();
+        EXPECT_NE(std::string(e.what()).find(std::to_string(max)), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(GL, LambertPlaneMatchesAnalyticRadiance) {

@@ -1,6 +1,7 @@
 #include "gi/diffusion/diffusion.h"
 
 #include "common/shared.h"
+#include "gi/gl/buffer_texture.h"
 #include "gi/render/gpu_scene.h"
 #include "gi/render/render_settings.h"
 #include "gi/util/budget.h"
@@ -40,6 +41,8 @@ void Diffusion::allocate(const FrameSettings& fs) {
     // Only the grid's resolution sizes anything here (a Reallocate bit may come from the image's size).
     int res = fs.diffusion.gridResolution;
     if (res == mResolution) return;
+    // emit.comp and gather.comp view the outgoing flux as a buffer texture of 6 texels per cell.
+    gl::requireBufferTexels(size_t(res) * res * res * 6, "diffusion.gridResolution");
     mResolution = res;
     mAlbedo = gl::Texture::create3D(GL_R32UI, res, res, res);
     mNormal = gl::Texture::create3D(GL_R32UI, res, res, res);

@@ -2,6 +2,7 @@
 
 #include "common/light.h"
 #include "common/shared.h"
+#include "gi/gl/buffer_texture.h"
 #include "gi/render/gpu_scene.h"
 #include "gi/render/lights.h"
 #include "gi/scene/camera.h"
@@ -130,12 +131,7 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
     {
         mResolution = s.gridResolution;
         // propagate.comp views a grid as a buffer texture of 3 texels per cell.
-        GLint maxTexels = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-        if (double(cells(mResolution)) * kCoefficients / 4 > double(maxTexels))
-            throw Error("lpv.gridResolution: " + std::to_string(mResolution) + "^3 cells need " +
-                        std::to_string(cells(mResolution) * kCoefficients / 4) + " texels of a buffer texture; this GL allows " +
-                        std::to_string(maxTexels));
+        gl::requireBufferTexels(cells(mResolution) * kCoefficients / 4, "lpv.gridResolution");
         mCascadeData.clear();
         mVolumeBytes = mGeometryBytes = 0;
         int r = mResolution;
