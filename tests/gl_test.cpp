@@ -81,6 +81,52 @@ TEST_F(GL, BufferTextureLimitIsCheckedNamingTheSetting) {
     }
 }
 
+// Issue 17 item 4: with static lights the shadow maps are drawn once and kept; moving a light
+// redraws them, and the kept maps give the same pixels as fresh ones. keepStaticWork off redraws
+// every frame.
+TEST_F(GL, StaticShadowMapsAreKeptAndRedrawnWhenALightMoves) {
+    Scene scene = makeBuiltinScene("cornell");
+    Preset p;
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    ASSERT_FALSE(fs.lights.empty());
+    ASSERT_TRUE(fs.lights[0].castShadows);
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    r.render(fs);
+    EXPECT_EQ(r.shadowDrawCount(), 1) << "a static light's maps are drawn once";
+    std::vector<float> kept = r.readHDR();
+    Renderer fresh;
+    fresh.setScene(scene);
+    fresh.render(fs);
+    EXPECT_EQ(fresh.readHDR(), kept) << "kept maps give the pixels fresh ones do";
+    // A camera move keeps the maps, and the frame still matches a fresh renderer's (the G-buffer
+    // once relied on the shadow pass to turn depth writes back on before its clear).
+    FrameSettings turned = fs;
+    turned.camera.eye += glm::vec3(0.3f, -0.2f, 0.0f);
+    r.render(turned);
+    EXPECT_EQ(r.shadowDrawCount(), 1) << "a camera move keeps the maps";
+    FrameSettings redrawn = turned;
+    redrawn.render.keepStaticWork = false;
+    Renderer reference;
+    reference.setScene(scene);
+    reference.render(redrawn);
+    EXPECT_EQ(r.readHDR(), reference.readHDR()) << "after a camera move";
+
+    FrameSettings moved = fs;
+    moved.lights[0].position += glm::vec3(0.2f, 0.0f, 0.0f);
+    r.render(moved);
+    EXPECT_EQ(r.shadowDrawCount(), 2) << "a moved light redraws them";
+    EXPECT_NE(r.readHDR(), kept) << "the moved light's shadows";
+    r.render(fs);
+    EXPECT_EQ(r.shadowDrawCount(), 3);
+    EXPECT_EQ(r.readHDR(), kept);
+    fs.render.keepStaticWork = false;
+    r.render(fs);
+    r.render(fs);
+    EXPECT_EQ(r.shadowDrawCount(), 5) << "keepStaticWork off: every frame";
+}
+
 TEST_F(GL, LambertPlaneMatchesAnalyticRadiance) {
     const float albedo = 0.5f;
     Renderer r;

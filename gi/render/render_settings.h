@@ -27,6 +27,7 @@ struct RenderSettings {
     glm::vec3 ambient{0.03f, 0.03f, 0.03f};   // uniform incident radiance used as the indirect term when technique is none
     float memoryBudgetMB = float(kDefaultMemoryBudgetMB);  // refuse settings whose GPU allocations would exceed this
     float timeBudgetSeconds = 600.0f;         // refuse work (environment prefilter, reference) estimated to take longer, s
+    bool keepStaticWork = true;               // keep the shadow maps between frames while nothing they depend on changes
 
     template <class V>
     void visit(V&& v) {
@@ -37,6 +38,10 @@ struct RenderSettings {
         v(ambient, {"ambient", "Uniform incident radiance standing in for indirect light when technique is none", "", 0, 100});
         v(memoryBudgetMB, forDevelopers({"memoryBudgetMB", "GPU memory budget; larger settings are refused", "MiB", 16, 1 << 20}));
         v(timeBudgetSeconds, forDevelopers({"timeBudgetSeconds", "Refuse work estimated to take longer than this", "s", 1, 1e6}));
+        v(keepStaticWork, forDevelopers({"keepStaticWork",
+                                         "Keep shadow maps between frames while the scene, the lights and the map size stay (off: redraw "
+                                         "them every frame, as for a dynamic scene; benchmarks compare both)",
+                                         ""}));
     }
 
     size_t memoryBudgetBytes() const { return size_t(double(memoryBudgetMB) * 1024.0 * 1024.0); }

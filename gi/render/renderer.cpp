@@ -3,6 +3,7 @@
 #include "render/render_shared.h"
 #include "gi/preset/reflect.h"
 #include "gi/util/error.h"
+#include "gi/util/hash.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -184,6 +185,7 @@ void Renderer::prepareShadows(const FrameSettings& fs) {
     mShadowTypes = types;
     mShadowCast = cast;
     mShadowSize = fs.render.shadowMapSize;
+    mShadowKey = 0;
     mShadows.clear();
     for (const auto& l : fs.lights) {
         ShadowMap sm;
@@ -281,7 +283,17 @@ void Renderer::render(const FrameSettings& fs) {
     gl::unbindTextureUnits();
     mTimer.beginFrame();
     runStage(ctx, [](Pass& p, FrameContext& c) { p.prepare(c); });
-    renderShadows(fs);
+    // What the shadow maps depend on: the scene, the map size and each light's packed entry
+    // (position, direction, cone, shadow projection) with its type and castShadows.
+    Hasher shadowKey;
+    shadowKey.value(mScene->id());
+    shadowKey.value(mShadowSize);
+    for (size_t i = 0; i < fs.lights.size(); ++i) {
+        shadowKey.value(fs.lights[i].type);
+        shadowKey.value(fs.lights[i].castShadows);
+        shadowKey.value(mLightBuffer[i]);
+    }
+    renderShadows(fs, shadowKey.result() | 1);
     for (size_t i = 0; i < fs.lights.size(); ++i)
         if (fs.lights[i].castShadows)
             mShadowViews[i] = {mShadows[i].depth.id(), light::cubeShadow(int(fs.lights[i].type)), mLightBuffer[i].shadowViewProj,
@@ -299,8 +311,12 @@ void Renderer::render(const FrameSettings& fs) {
     for (ActivePass& p : mPasses) p.completed = fs;
 }
 
-void Renderer::renderShadows(const FrameSettings& fs) {
+void Renderer::renderShadows(const FrameSettings& fs, uint64_t key) {
     auto pass = mTimer.scope("shadows");
+    // The maps already hold this key's shadows (the editor's steady state): nothing to redraw.
+    if (fs.render.keepStaticWork && key == mShadowKey) return;
+    mShadowKey = key;
+    ++mShadowDraws;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -366,6 +382,10 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glViewport(0, 0, mWidth, mHeight);
     const float zero[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(mGBufferFBO.id(), GL_COLOR, i, zero);
+    // Clears obey the write masks: the lighting pass leaves depth writes off, and until the
+    // shadow maps were kept between frames the shadow pass turned them back on before this.
+    glDepthMask(GL_TRUE);
+    glStencilMask(0xff);
     glClearNamedFramebufferfi(mGBufferFBO.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

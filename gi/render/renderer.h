@@ -50,6 +50,9 @@ public:
     static void checkBudget(const FrameSettings& fs, const Scene& scene) { checkBudget(fs, GPUScene::estimateBytes(scene)); }
 
     void render(const FrameSettings& fs);
+    // Shadow-map redraws since creation: with render.keepStaticWork a frame redraws them only when
+    // the scene, a light (its packed entry, type or castShadows) or the map size changed.
+    int shadowDrawCount() const { return mShadowDraws; }
     // Hears the progress of long steps inside render() (the environment prefilter).
     void setProgressSink(ProgressSink sink) { mProgress = std::move(sink); }
 
@@ -139,6 +142,8 @@ private:
     std::vector<ShadowMapView> mShadowViews;
     LightBuffer mLightBuffer;  // this frame's lights, bound for every pass
     int mShadowSize = 0;
+    uint64_t mShadowKey = 0;  // what the shadow maps hold (render()), 0: nothing yet
+    int mShadowDraws = 0;
     std::vector<LightType> mShadowTypes;
     std::vector<bool> mShadowCast;
     CameraSettings mCamera;
@@ -163,7 +168,7 @@ private:
 
     void resize(int width, int height);
     void prepareShadows(const FrameSettings& fs);
-    void renderShadows(const FrameSettings& fs);
+    void renderShadows(const FrameSettings& fs, uint64_t key);
     void renderGBuffer(const glm::mat4& viewProj);
     void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx);
     void renderToneMap(const FrameSettings& fs);

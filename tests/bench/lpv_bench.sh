@@ -47,12 +47,17 @@ echo "texels per cell-step: 18 + 2 + 3 read, 6 written (16 bytes each: 368 read,
 if [ -d ../shared/scenes/sponza_crytek ]; then
   sponza=(presets/sponza.json --set technique=lpv --set lpv.cascadeCount=3 --set lpv.cascadeExtent=10
           --set lpv.propagationSteps=8 --set lpv.gridResolution=32)
+  # The steady state (static lights: the shadow maps kept from the first frame) and the
+  # everything-dynamic frame (render.keepStaticWork=false redraws them every frame).
+  for keep in true false; do
   for ((r = 0; r < runs; ++r)); do
-    "$build/app/gi-render" "${sponza[@]}" --width 800 --height 600 --frames 3 --out "$out/run$r" >/dev/null
+    "$build/app/gi-render" "${sponza[@]}" --set render.keepStaticWork=$keep --width 800 --height 600 --frames 3 \
+      --out "$out/run$r" >/dev/null
   done
-  python3 - "$out" "$runs" <<'PY'
+  python3 - "$out" "$runs" "$keep" <<'PY'
 import json, statistics, sys
 out, n = sys.argv[1], int(sys.argv[2])
+print('steady state (static lights, shadow maps kept):' if sys.argv[3] == 'true' else 'everything dynamic (shadow maps redrawn):')
 runs = sorted((json.load(open('%s/run%d/stats.json' % (out, i))) for i in range(n)), key=lambda s: s['gpuMsTotal'])
 s = runs[len(runs) // 2]
 total = s['gpuMsTotal']
@@ -62,6 +67,7 @@ print('sponza 800x600, 3 cascades 32^3, 8 steps: frame %.0f ms (range %.0f-%.0f,
 print('  LPV passes %.0f ms; the peer (anchor): frame 1952 ms, LPV passes about 1900 ms: frame %.1fx, LPV passes %.1fx faster' % (
     lpv, 1952.0 / total, 1900.0 / lpv))
 PY
+  done
   "$build/app/gi-render" "${sponza[@]}" --width 128 --height 96 --score --out "$out/score" >/dev/null
   python3 -c "import json; s=json.load(open('$out/score/stats.json')); print('  the same settings at 128x96: SSIM %.4f against the reference' % s['metrics']['ssim'])"
 fi
