@@ -399,5 +399,44 @@ TEST_F(LPVGL, PointLightIndirectMatchesTheReference) {
     EXPECT_NEAR(fine / reference, 1.0, 0.25);
 }
 
+// Issue 17 item 4: RSMs are kept under static lights. A camera move inside the cascades' snap
+// keeps them, with the pixels of a renderer that redraws them; a moving camera carries a
+// directional light's cascade maps along with their boxes; a moved light redraws its maps.
+TEST_F(LPVGL, StaticRSMsAreKeptAndRedrawnWhenALightMoves) {
+    Scene scene = makeBuiltinScene("cornell");
+    Preset p;
+    p.header.technique.name = "lpv";
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    ASSERT_FALSE(fs.lights.empty());
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    auto lpvOf = [](const Renderer& x) { return dynamic_cast<const LPV*>(x.technique()); };
+    ASSERT_NE(lpvOf(r), nullptr);
+    int maps = lpvOf(r)->rsmDrawCount();
+    ASSERT_GT(maps, 0);
+    r.render(fs);
+    EXPECT_EQ(lpvOf(r)->rsmDrawCount(), maps) << "static lights: no map drawn again";
+    FrameSettings turned = fs;
+    turned.camera.target += glm::vec3(0.2f, -0.1f, 0.0f);
+    r.render(turned);
+    EXPECT_EQ(lpvOf(r)->rsmDrawCount(), maps) << "a camera turn keeps the cascades and the maps";
+    FrameSettings redrawn = turned;
+    redrawn.render.keepStaticWork = false;
+    Renderer reference;
+    reference.setScene(scene);
+    reference.render(redrawn);
+    EXPECT_EQ(r.readHDR(), reference.readHDR()) << "kept maps give the pixels redrawn ones do";
+
+    FrameSettings moved = turned;
+    moved.lights[0].position += glm::vec3(0.2f, 0.0f, 0.0f);
+    moved.lights[0].direction += glm::vec3(0.05f, 0.0f, 0.0f);
+    r.render(moved);
+    EXPECT_EQ(lpvOf(r)->rsmDrawCount(), 2 * maps) << "a moved light redraws them";
+    moved.render.keepStaticWork = false;
+    r.render(moved);
+    EXPECT_EQ(lpvOf(r)->rsmDrawCount(), 3 * maps) << "keepStaticWork off: every frame";
+}
+
 }  // namespace
 }  // namespace gi

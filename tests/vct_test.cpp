@@ -13,6 +13,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <cmath>
+#include <map>
 
 namespace gi {
 namespace {
@@ -243,6 +244,45 @@ TEST_F(VCTGL, StaticGridIsVoxelizedOnce) {
     fs.vct.levelExtent = 3.0f;  // a new grid placement
     r.render(fs);
     EXPECT_EQ(vctOf(r).voxelizationCount(), 2);
+}
+
+// Issue 17 item 4: static geometry under static lights keeps the lit volumes (injection, mips,
+// bounces). A camera move keeps them, with the pixels of a renderer that relights every frame; a
+// moved light, a VCT setting and keepStaticWork off each relight.
+TEST_F(VCTGL, LitVolumesAreKeptUnderStaticLights) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = cornellFrame(scene, 32);
+    fs.vct.bounceCount = 2;
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    r.render(fs);
+    EXPECT_EQ(vctOf(r).lightingCount(), 1) << "static lights light the volumes once";
+    FrameSettings turned = fs;
+    turned.camera.eye += glm::vec3(0.3f, -0.2f, 0.0f);
+    r.render(turned);
+    EXPECT_EQ(vctOf(r).lightingCount(), 1) << "a camera move keeps them";
+    FrameSettings dynamic = turned;
+    dynamic.render.keepStaticWork = false;
+    Renderer reference;
+    reference.setScene(scene);
+    reference.render(dynamic);
+    EXPECT_EQ(r.readIndirectRadiance(), reference.readIndirectRadiance()) << "kept volumes give the pixels relit ones do";
+
+    FrameSettings moved = turned;
+    moved.lights[0].position += glm::vec3(0.2f, 0.0f, 0.0f);
+    std::vector<float> before = r.readIndirectRadiance();
+    r.render(moved);
+    EXPECT_EQ(vctOf(r).lightingCount(), 2) << "a moved light relights them";
+    EXPECT_NE(r.readIndirectRadiance(), before);
+    FrameSettings brighter = moved;
+    brighter.vct.nudge += 0.5f;
+    r.render(brighter);
+    EXPECT_EQ(vctOf(r).lightingCount(), 3) << "a VCT setting relights them";
+    brighter.render.keepStaticWork = false;
+    r.render(brighter);
+    r.render(brighter);
+    EXPECT_EQ(vctOf(r).lightingCount(), 5) << "keepStaticWork off: every frame";
 }
 
 // Voxels of every level in logical order (toroidal addressing undone).
@@ -554,6 +594,54 @@ TEST_F(VCTGL, VAOScalesTheIndirectLightByTheConesVisibility) {
     EXPECT_LT(full, 0.9 * off);
     EXPECT_GT(near, full);
     EXPECT_LT(near, off);
+}
+
+// Issue 17 item 3: the screen trace counts its work (VCT::report). In a view that surfaces fill,
+// every pixel is traced with the diffuse set and the specular cone; the isotropic volume takes one
+// texture call a sample, the anisotropic atlas three (four where a sample still blends level 0
+// in), the SH volumes four; half the step takes more samples (not twice: most cones here end
+// opaque on a wall within three steps), and a cone that ends sooner fewer.
+TEST_F(VCTGL, TraceCountsItsWork) {
+    Scene scene = test::twoRooms();
+    Preset p;
+    p.header.technique.name = "vct";
+    p.vct.gridResolution = 32;
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    fs.vct.traceScale = 1.0f;
+    fs.vct.specularCone = true;
+    test::lookIntoClosedRoom(fs.camera);
+    Renderer r;
+    r.setScene(scene);
+    auto work = [&](const char* label) {
+        r.render(fs);
+        std::map<std::string, double> n;
+        for (const auto& [name, report] : r.passReports(fs))
+            if (name == "vct")
+                for (const auto& [key, value] : report.numbers) n[key] = value;
+        std::printf("%s: %.0f pixels, %.0f cones, %.2f samples per cone, %.3f texture calls per sample\n", label, n["tracedPixels"],
+                    n["cones"], n["samplesPerCone"], n["textureCallsPerSample"]);
+        return n;
+    };
+    auto base = work("anisotropic");
+    EXPECT_EQ(base["tracedPixels"], double(fs.width * fs.height));
+    EXPECT_EQ(base["cones"], base["tracedPixels"] * double(makeConeSet(fs.vct).cones.size() + 1));
+    EXPECT_GE(base["textureCallsPerSample"], 3.0);
+    EXPECT_LE(base["textureCallsPerSample"], 4.0);
+    EXPECT_GE(base["samplesPerCone"], 1.0);
+    EXPECT_NEAR(base["samplesPerPixel"], base["samples"] / base["tracedPixels"], 1e-9 * base["samplesPerPixel"]);
+    fs.vct.stepMultiplier = 0.5f;
+    auto halfStep = work("half the step");
+    EXPECT_GT(halfStep["samplesPerCone"], 1.3 * base["samplesPerCone"]);
+    fs.vct.stepMultiplier = 1.0f;
+    fs.vct.maxDistance = 1.0f;  // the cones start 0.66 m out (nudge 3 voxel diagonals of 0.22 m)
+    auto shortCones = work("cones 1 m long");
+    EXPECT_GT(shortCones["samplesPerCone"], 0.0);
+    EXPECT_LT(shortCones["samplesPerCone"], 0.8 * base["samplesPerCone"]);
+    fs.vct.maxDistance = 0.0f;
+    fs.vct.anisotropic = false;
+    EXPECT_EQ(work("isotropic")["textureCallsPerSample"], 1.0);
+    fs.vct.sh = true;
+    EXPECT_EQ(work("SH")["textureCallsPerSample"], 4.0);
 }
 
 }  // namespace

@@ -207,8 +207,17 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glViewport(0, 0, mRSMResolution, mRSMResolution);
+    // A map is kept while what it shows stays (issue 17 item 4, render.keepStaticWork): the
+    // scene, every light and LPV setting (ctx.changes: any light field; the RSM size
+    // reallocates) and its own projection (a directional light's follows its cascade).
+    const bool redrawAll = !fs.render.keepStaticWork || ctx.changes != 0 || ctx.scene.id() != mRSMSceneId;
+    mRSMSceneId = ctx.scene.id();
     // Draws the scene into map m, with the light's entry li in the light buffer.
     auto draw = [&](RSM& m, size_t li) {
+        if (!redrawAll && m.drawn && m.drawnViewProj == m.viewProj) return;
+        m.drawn = true;
+        m.drawnViewProj = m.viewProj;
+        ++mRSMDraws;
         glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
         const float zero[4] = {0, 0, 0, 0};
         for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, i, zero);
@@ -631,6 +640,7 @@ size_t LPVSettings::estimateBytes(const FrameSettings& fs) { return LPV::estimat
 std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLights(fs.lights); }
 
 bool LPV::reloadShaders(std::string& log) {
+    for (RSM& m : mRSMs) m.drawn = false;  // the edited shaders draw them afresh
     bool ok = true;
     for (gl::Program* p : {&mRSMProg, &mRSMOpaqueProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
                            &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})

@@ -137,6 +137,8 @@ public:
     bool reloadShaders(std::string& log) override;
 
     const std::vector<CascadeBox>& cascades() const { return mBoxes; }
+    // RSMs drawn since creation (tests: static lights keep them).
+    int rsmDrawCount() const { return mRSMDraws; }
 
     // One propagation step on SSBOs of 12 floats per cell (RGB x 4 SH coefficients): gathers
     // `src` into `dst` and adds `dst` to `accum`; `transmit` (8 floats per cell, from the geometry
@@ -153,6 +155,8 @@ private:
         int light = 0;
         int cascade = 0;  // the cascade it feeds; -1: every cascade (a cube's faces)
         int face = -1;    // a point light's cube face (+X, -X, +Y, -Y, +Z, -Z), or -1
+        bool drawn = false;              // it holds the scene seen through drawnViewProj
+        glm::mat4 drawnViewProj{1.0f};
         bool feeds(size_t k) const { return cascade < 0 || size_t(cascade) == k; }
     };
     struct Cascade {
@@ -174,6 +178,8 @@ private:
     std::vector<RSM> mRSMs;
     int mResolution = 0, mRSMResolution = 0;
     size_t mRSMBytes = 0, mVolumeBytes = 0, mGeometryBytes = 0;
+    uint64_t mRSMSceneId = 0;  // the scene the RSMs show
+    int mRSMDraws = 0;
     gl::Sampler mLinear;
 
     void allocate(const FrameSettings& fs, uint8_t changes);

@@ -85,8 +85,6 @@ VCT::VCT()
     for (gl::Program* p : {&mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg}) mBlock.requireIn(*p);
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
-    // The anisotropic atlas is read one mip at a time (trace.glsl blends the two by hand).
-    mAnisoSampler = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_NEAREST);
 }
 
 VCT::~VCT() = default;
@@ -101,8 +99,11 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
         double scaled = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
         bytes += size_t(scaled) * 16;  // the low-resolution trace targets
     }
-    if (anisotropicOn(s)) bytes += 6 * mipChain(8 + 2, res / 2, std::max(mips - 1, 1));  // radiance, coverage
-    if (anisotropicOn(s) && s.faceSides) bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
+    if (anisotropicOn(s)) bytes += 6 * mipChain(8, res / 2, std::max(mips - 1, 1));
+    if (anisotropicOn(s) && s.faceSides) {
+        bytes += 6 * mipChain(2, res / 2, std::max(mips - 1, 1));                 // the coverage atlas
+        bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
+    }
     if (shOn(s)) bytes += 3 * mipChain(8, res, mips);
     return bytes;
 }
@@ -152,8 +153,11 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     for (auto& t : mSH) t = gl::Texture();
     if (mAnisotropic) {
         mAniso = gl::Texture::create3D(GL_RGBA16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
+        mRadianceBytes += mAniso.bytes();
+    }
+    if (mFaceSides) {
         mAnisoCoverage = gl::Texture::create3D(GL_R16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
-        mRadianceBytes += mAniso.bytes() + mAnisoCoverage.bytes();
+        mRadianceBytes += mAnisoCoverage.bytes();
     }
     if (mSHVoxels)
         for (auto& t : mSH) {
@@ -165,14 +169,23 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
 
 void VCT::indirect(FrameContext& ctx) {
     allocate(ctx.settings, ctx.changes);
-    updateGrids(ctx);
-    inject(ctx);
+    bool revoxelized = updateGrids(ctx);
+    // The lit volumes, their mips and bounces depend on the voxels, the lights (their shadow maps
+    // too) and VCT's settings alone, so static geometry under static lights keeps them (issue 17
+    // item 4): ctx.changes holds the cost tags of every light and VCT setting changed since the
+    // last frame, and a moved grid revoxelizes. The passes still open their timers.
+    bool relight = !mLit || revoxelized || ctx.changes != 0 || !ctx.settings.render.keepStaticWork;
+    if (relight) ++mLightings;
+    mLit = true;
+    inject(ctx, relight);
     {
         auto pass = ctx.timer.scope("vct.mip");
-        for (Level& l : mLevels) resolve(l, false);
-        buildMips();
+        if (relight) {
+            for (Level& l : mLevels) resolve(l, false);
+            buildMips();
+        }
     }
-    bounce(ctx);
+    bounce(ctx, relight);
     trace(ctx);
     ctx.indirectWritten = true;
 }
@@ -186,19 +199,21 @@ vct::VCTParams VCT::gridParams(const Level& level) const {
     return p;
 }
 
-void VCT::updateGrids(const FrameContext& ctx) {
+bool VCT::updateGrids(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("vct.voxelize");
     const Bounds& b = ctx.scene.bounds();
     std::vector<VoxelBox> boxes = vctLevels(ctx.settings.vct, b.min, b.max, ctx.settings.camera.eye);
     bool newScene = ctx.scene.id() != mSceneId;
     if (newScene) mSceneId = ctx.scene.id();
     const int r = mResolution;
+    bool any = false;
     for (size_t k = 0; k < mLevels.size(); ++k) {
         Level& l = mLevels[k];
         const VoxelBox& nb = boxes[k];
         bool sameLattice = l.voxelized && !newScene && l.box.cellSize == nb.cellSize && !ctx.settings.vct.revoxelizeEveryFrame;
         mVoxelizedVoxels[k] = 0;
         if (sameLattice && l.box.min == nb.min && l.box.origin == nb.origin) continue;
+        any = true;
         glm::ivec3 delta = nb.origin - l.box.origin;
         bool partial = sameLattice && mMode == VCTMode::Clipmap && glm::all(glm::lessThan(glm::abs(delta), glm::ivec3(r)));
         l.box = nb;
@@ -219,10 +234,12 @@ void VCT::updateGrids(const FrameContext& ctx) {
             mVoxelizedVoxels[k] += size_t(size.x) * size_t(size.y) * size_t(size.z);
         }
     }
+    return any;
 }
 
-void VCT::inject(const FrameContext& ctx) {
+void VCT::inject(const FrameContext& ctx, bool relight) {
     auto pass = ctx.timer.scope("vct.inject");
+    if (!relight) return;
     for (Level& l : mLevels)
         mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.exitFront.id(), l.exitBack.id(), l.sides.id(),
                          l.sidesRadiance.id());
@@ -261,13 +278,14 @@ void VCT::buildMips() {
     mMipProg.use();
     // size: the destination's voxels per side; srcOffset, dstOffset: the first x of the
     // direction's slab in the anisotropic atlas (0 elsewhere).
-    // fromSides (anisotropic only): what mip.comp reads, 0 the atlas's mip below, 1 level 0's
-    // sides, 2 the isotropic level 0; the anisotropic passes also write the coverage atlas.
+    // fromSides (anisotropic only): 1 when the first mip reads level 0's sides, not src; with
+    // vct.faceSides the anisotropic passes also write the coverage atlas.
     auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction, int size,
                      int srcOffset, int dstOffset, int fromSides = 0) {
         vct::VCTParams p{};
         p.resolution = mResolution;
         p.fromSides = fromSides;
+        p.sides = mFaceSides ? 1 : 0;
         p.sourceLevel = srcLevel;
         p.destSize = glm::ivec4(glm::ivec3(size), 0);
         p.direction = direction;
@@ -276,7 +294,7 @@ void VCT::buildMips() {
         mBlock.set(p);
         glBindTextureUnit(vct::kVCTUnitMipSource, src.id());
         glBindImageTexture(vct::kVCTImageMipDest, dst.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        if (direction >= 0) {
+        if (direction >= 0 && mFaceSides) {
             glBindTextureUnit(vct::kVCTUnitMipSourceCoverage, mAnisoCoverage.id());
             glBindImageTexture(vct::kVCTImageMipDestCoverage, mAnisoCoverage.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
         }
@@ -295,7 +313,7 @@ void VCT::buildMips() {
         if (mFaceSides) glBindTextureUnit(vct::kVCTUnitMipSides, mLevels[0].sidesRadiance.id());
         const int half = mResolution / 2;
         for (int d = 0; d < 6; ++d) {
-            level(mLevels[0].radiance, 0, mAniso, 0, d, half, 0, d * half, mFaceSides ? 1 : 2);
+            level(mLevels[0].radiance, 0, mAniso, 0, d, half, 0, d * half, mFaceSides ? 1 : 0);
             for (int m = 1; m < mMipCount - 1; ++m)
                 level(mAniso, m - 1, mAniso, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m));
         }
@@ -309,11 +327,11 @@ void VCT::bindRadiance() const {
         glBindSampler(unit, mMode == VCTMode::Clipmap ? mRepeat.id() : mLinear.id());
     }
     glBindTextureUnit(GLuint(vct::kVCTUnitAniso), mAniso.id());
-    glBindSampler(GLuint(vct::kVCTUnitAniso), mAnisoSampler.id());
+    glBindSampler(GLuint(vct::kVCTUnitAniso), mLinear.id());
     glBindTextureUnit(GLuint(vct::kVCTUnitSides), mLevels[0].sidesRadiance.id());
-    glBindSampler(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoSampler.id());
+    glBindSampler(GLuint(vct::kVCTUnitAnisoCoverage), mLinear.id());
     glBindTextureUnit(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoCoverage.id());
-    glBindSampler(GLuint(vct::kVCTUnitSides), mAnisoSampler.id());
+    glBindSampler(GLuint(vct::kVCTUnitSides), mLinear.id());
     for (int c = 0; c < 3; ++c) {
         glBindTextureUnit(GLuint(vct::kVCTUnitSH + c), mSH[size_t(c)].id());
         glBindSampler(GLuint(vct::kVCTUnitSH + c), mLinear.id());
@@ -339,10 +357,11 @@ void VCT::setConeParams(vct::VCTParams& p, const VCTSettings& s) const {
     p.maxDistance = s.maxDistance > 0.0f ? s.maxDistance : outer.extent(mResolution) * shared::kSqrt3;
 }
 
-void VCT::bounce(const FrameContext& ctx) {
+void VCT::bounce(const FrameContext& ctx, bool relight) {
     const VCTSettings& s = ctx.settings.vct;
     if (s.bounceCount <= 1) return;
     auto pass = ctx.timer.scope("vct.bounce");
+    if (!relight) return;
     // Each bounce leaves direct light (exitFront/Back, kept) + the light gathered through the
     // volumes, in bouncedFront/Back, which resolve() then reads.
     for (Level& l : mLevels)
@@ -435,8 +454,11 @@ void VCT::trace(const FrameContext& ctx) {
     glBindImageTexture(vct::kVCTImageIndirect, scaled ? mLowIndirect.id() : ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(vct::kVCTImageSpecular, scaled ? mLowSpecular.id() : ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY,
                        GL_RGBA16F);
+    if (!mWork.id()) mWork = gl::createBuffer(2 * vct::kVCTWorkCount * sizeof(GLuint), nullptr, 0);
+    glClearNamedBufferData(mWork.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferWork, mWork.id());
     glDispatchCompute(gl::groupCount(low.x, shared::kGroup2D), gl::groupCount(low.y, shared::kGroup2D), 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
     glBindSampler(vct::kVCTUnitSky, 0);
     if (!scaled) return;
@@ -517,12 +539,32 @@ std::vector<std::string> VCT::passNames(const FrameSettings& fs) const {
     return names;
 }
 
+PassReport VCT::report(const FrameSettings&) const {
+    PassReport r;
+    if (!mWork.id()) return r;
+    std::array<GLuint, 2 * vct::kVCTWorkCount> words{};
+    glGetNamedBufferSubData(mWork.id(), 0, GLsizeiptr(sizeof(words)), words.data());
+    auto count = [&](int i) { return double(uint64_t(words[size_t(2 * i)]) | uint64_t(words[size_t(2 * i + 1)]) << 32); };
+    double pixels = count(vct::kVCTWorkPixels), cones = count(vct::kVCTWorkCones);
+    double samples = count(vct::kVCTWorkSamples), fetches = count(vct::kVCTWorkFetches);
+    auto ratio = [](double a, double b) { return b > 0.0 ? a / b : 0.0; };
+    r.numbers = {{"tracedPixels", pixels},
+                 {"cones", cones},
+                 {"samples", samples},
+                 {"textureCalls", fetches},
+                 {"samplesPerPixel", ratio(samples, pixels)},
+                 {"samplesPerCone", ratio(samples, cones)},
+                 {"textureCallsPerSample", ratio(fetches, samples)}};
+    return r;
+}
+
 std::unique_ptr<Pass> VCTSettings::createPass() { return std::make_unique<VCT>(); }
 size_t VCTSettings::estimateBytes(const FrameSettings& fs) { return VCT::estimateBytes(fs); }
 
 size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndirect.bytes() + mLowSpecular.bytes(); }
 
 bool VCT::reloadShaders(std::string& log) {
+    mLit = false;  // the edited shaders light the volumes afresh
     bool ok = mSurfaces.reloadShaders(log);
     for (gl::Program* p : {&mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg, &mBounceProg, &mTraceProg})
         if (!p->reload()) {

@@ -22,7 +22,11 @@
 //   4. Mips [vct.mip]: a box filter of premultiplied RGBA (or SH); with `anisotropic`, six
 //      volumes of half resolution, one per marching direction, each compositing the children's
 //      pairs front to back along it (seed 003 section 1.6 describes them, unimplemented there),
-//      with a coverage atlas beside them (mip.comp).
+//      with `faceSides` also a coverage atlas beside them (mip.comp).
+//   Passes 2 to 4 depend on the voxels, the lights (with their shadow maps) and VCT's settings
+//   only, so while none of them changes (static geometry under static lights, the editor's
+//   steady state) the lit volumes are kept and those passes do nothing but open their timers
+//   (render.keepStaticWork; issue 17 item 4).
 //
 // Face sides (`faceSides`, a developer setting, off): anisotropic voxels that keep each face of a
 // surface on its own side, for thin walls (issue 13 item 6). The voxelizer also writes six
@@ -38,7 +42,8 @@
 //      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With
 //      traceScale < 1 the cones run on a smaller image and a joint bilateral filter (depth and
 //      normal) upsamples it [vct.upsample]: diffuse indirect light is smooth, and the trace is
-//      most of the frame's cost on a CPU rasterizer.
+//      most of the frame's cost on a CPU rasterizer. The trace counts its work (traced pixels,
+//      cones, cone steps, texture calls; report(), stats.json "vct"), which carries over to a GPU.
 //
 // Grids (`mode`):
 //   - dense: one grid, the scene's bounding cube (2 % larger), so any glTF without a preset works.
@@ -60,7 +65,12 @@
 //   - Anisotropic and SH volumes apply to dense mode; with both on, SH is used. The six
 //     anisotropic directions live side by side in one atlas texture (one sampler; a cone reads
 //     its three directions from it, where six separate volumes cost llvmpipe a select between
-//     two samples per axis: trace 1.5x slower).
+//     two samples per axis: trace 1.5x slower). A sample makes one texture call per direction,
+//     filtered across the two mips around its lod by the sampler; x is clamped half a texel of
+//     the coarser mip inside the slab, so within a texel of the grid's x faces the finer mip is
+//     read slightly inside (reading each mip at its own clamp took two calls per direction).
+//     The trace costs llvmpipe about its texture calls: 3 per sample here against the isotropic
+//     volume's 1.
 //   - Cone samples read kVCTFootprintLod (1.25) mips finer than the cone's diameter (issue 13):
 //     a trilinear sample of a mip reaches 1.5 texels, so at the diameter's own mip every sample
 //     of a 60-degree cone took in the receiver's own surface, and a floor under a lit panel
@@ -132,6 +142,9 @@ public:
     size_t memoryBytes() const override;
     std::vector<VolumeMemory> volumeMemory() const override;
     std::vector<std::string> passNames(const FrameSettings& fs) const override;
+    // The last screen trace's work (issue 17): traced pixels, cones, cone steps (samples) and
+    // texture calls, with samples per pixel and per cone and texture calls per sample.
+    PassReport report(const FrameSettings& fs) const override;
     bool reloadShaders(std::string& log) override;
 
     struct Level {
@@ -154,23 +167,28 @@ public:
     const std::vector<size_t>& voxelizedVoxels() const { return mVoxelizedVoxels; }
     // Voxelizations run since creation (tests: a static grid is not voxelized twice).
     int voxelizationCount() const { return mSurfaces.voxelizationCount(); }
+    // Frames that lit the volumes (injection, mips, bounces) since creation: static lights keep them.
+    int lightingCount() const { return mLightings; }
 
 private:
     SurfaceVoxelizer mSurfaces;  // passes 1 and 2
     gl::Program mResolveProg, mMipProg, mUpsampleProg;
     gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
     gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
+    gl::Buffer mWork;                        // trace.comp's counters (kVCTBufferWork)
     gl::Program mCompactProg;
     gl::UniformBlock<vct::VCTParams> mBlock;  // every pass reads it
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
     gl::Texture mAnisoCoverage;  // R16F beside it: the facing coverage (mip.comp)
     std::array<gl::Texture, 3> mSH;
-    gl::Sampler mLinear, mRepeat, mAnisoSampler;
+    gl::Sampler mLinear, mRepeat;
     int mResolution = 0, mMipCount = 0;
     bool mAnisotropic = false, mSHVoxels = false, mFaceSides = false;
     VCTMode mMode = VCTMode::Dense;
     uint64_t mSceneId = 0;
+    bool mLit = false;  // the volumes hold the light of the current voxels (indirect())
+    int mLightings = 0;
     size_t mVoxelBytes = 0, mRadianceBytes = 0;
     std::vector<size_t> mVoxelizedVoxels;
 
@@ -179,12 +197,14 @@ private:
     vct::VCTParams gridParams(const Level& level) const;
     // The cone set and march fields of bounce and trace.
     void setConeParams(vct::VCTParams& p, const VCTSettings& s) const;
-    void updateGrids(const FrameContext& ctx);
-    void inject(const FrameContext& ctx);
+    // Voxelizes what the grids' placement needs; true when any level was (partly) revoxelized.
+    bool updateGrids(const FrameContext& ctx);
+    // Each a no-op but for its timer unless relight (indirect()).
+    void inject(const FrameContext& ctx, bool relight);
     void bindVoxelImages(const Level& level) const;
     void resolve(Level& level, bool bounced);
     void buildMips();
-    void bounce(const FrameContext& ctx);
+    void bounce(const FrameContext& ctx, bool relight);
     void trace(const FrameContext& ctx);
     void bindRadiance() const;
 };

@@ -12,8 +12,8 @@
 // first by the second over its three directions (trace.glsl), so it sees the mean radiance of the
 // surfaces that face it, and nothing of a surface that faces away: the dark face of a thin wall
 // no longer shows the lit face's light, which the mean of all its fragments did. Without it the
-// first mip comes from the isotropic level 0 with the coverage equal to the opacity, which gives
-// the premultiplied radiance as before.
+// first mip comes from the isotropic level 0, the coverage equals the opacity at every mip and
+// no coverage atlas is kept (uVCT.sides 0): the atlas holds the premultiplied radiance as before.
 #include "vct/vct_shared.h"
 
 #include "common/shared.h"
@@ -27,13 +27,9 @@ layout(binding = kVCTImageMipDestCoverage, r16f) uniform writeonly image3D uDest
 // The source at c as a cone marching along the direction sees it: (radiance x coverage, opacity)
 // and the coverage.
 vec4 fetch(ivec3 c, int side, out float coverage) {
-    if (uVCT.fromSides == 0) {
-        coverage = texelFetch(uSourceCoverage, c, uVCT.sourceLevel).r;
-        return texelFetch(uSource, c, uVCT.sourceLevel);
-    }
-    if (uVCT.fromSides == 2) {  // the isotropic level 0 (vct.faceSides off): every face faces every way
-        vec4 s = texelFetch(uSource, c, 0);
-        coverage = s.a;
+    if (uVCT.fromSides != 1) {  // the atlas's mip below, or the isotropic level 0 (every face faces every way)
+        vec4 s = texelFetch(uSource, c, uVCT.sourceLevel);
+        coverage = uVCT.sides != 0 ? texelFetch(uSourceCoverage, c, uVCT.sourceLevel).r : s.a;
         return s;
     }
     vec4 s = texelFetch(uSides, c + ivec3(side * uVCT.resolution, 0, 0), 0);
@@ -79,5 +75,5 @@ void main() {
         sumCoverage += nearCoverage + (1.0 - near.a) * farCoverage;
     }
     imageStore(uDest, d + ivec3(uVCT.destOffsetX, 0, 0), sum * 0.25);
-    imageStore(uDestCoverage, d + ivec3(uVCT.destOffsetX, 0, 0), vec4(sumCoverage * 0.25));
+    if (uVCT.sides != 0) imageStore(uDestCoverage, d + ivec3(uVCT.destOffsetX, 0, 0), vec4(sumCoverage * 0.25));
 }

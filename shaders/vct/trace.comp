@@ -19,6 +19,12 @@ layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kVCTImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
 layout(binding = kVCTImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
 layout(binding = kVCTUnitSky) uniform samplerCube uSky;
+layout(std430, binding = kVCTBufferWork) buffer Work { uint uWork[2 * kVCTWorkCount]; };  // (low, high) pairs
+
+// The workgroup's counts, added to the 64-bit totals once per group.
+shared uint sWork[kVCTWorkCount];
+
+void countWork(int counter, uint n) { atomicAdd(sWork[counter], n); }
 
 // The environment's radiance seen through a cone's leftover transparency.
 vec3 skyRadiance(vec3 dir, float roughness) {
@@ -27,9 +33,7 @@ vec3 skyRadiance(vec3 dir, float roughness) {
     return uVCT.sky.x * textureLod(uSky, envRotateY(dir, -uVCT.sky.y), lod).rgb;
 }
 
-void main() {
-    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(q, uVCT.imageSize.xy))) return;
+void trace(ivec2 q) {
     // The traced pixel stands for the full-resolution pixel under its centre (upsample.comp reads the same).
     ivec2 px = min(ivec2((vec2(q) + 0.5) * uVCT.toFull.xy), uVCT.imageSize.zw - 1);
     float depth = texelFetch(uDepth, px, 0).r;
@@ -41,6 +45,8 @@ void main() {
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
         mat3 frame = tangentFrame(n);
         float visibility = 0.0;
+        countWork(kVCTWorkPixels, 1u);
+        countWork(kVCTWorkCones, uint(uVCT.coneCount + (uVCT.specularCone != 0 ? 1 : 0)));
         for (int i = 0; i < uVCT.coneCount; ++i) {
             float occlusion;
             vec3 dir = frame * uVCT.cones[i].xyz;
@@ -62,4 +68,19 @@ void main() {
     }
     imageStore(uIndirect, q, vec4(indirect, 1.0));
     imageStore(uSpecular, q, vec4(specular, 1.0));
+    countWork(kVCTWorkSamples, gVCTSamples);
+    countWork(kVCTWorkFetches, gVCTFetches);
+}
+
+void main() {
+    if (gl_LocalInvocationIndex < uint(kVCTWorkCount)) sWork[gl_LocalInvocationIndex] = 0u;
+    barrier();
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (all(lessThan(q, uVCT.imageSize.xy))) trace(q);
+    barrier();
+    if (gl_LocalInvocationIndex < uint(kVCTWorkCount)) {
+        uint i = 2u * gl_LocalInvocationIndex, n = sWork[gl_LocalInvocationIndex];
+        uint before = atomicAdd(uWork[i], n);
+        if (before + n < before) atomicAdd(uWork[i + 1u], 1u);  // the carry into the high word
+    }
 }

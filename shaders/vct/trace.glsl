@@ -38,8 +38,8 @@
 layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
 #if VCT_ANISO
 layout(binding = kVCTUnitAniso) uniform sampler3D uAniso;  // +X -X +Y -Y +Z -Z side by side along x
-layout(binding = kVCTUnitAnisoCoverage) uniform sampler3D uAnisoCoverage;  // the atlas's facing coverage (mip.comp)
 #if VCT_SIDES
+layout(binding = kVCTUnitAnisoCoverage) uniform sampler3D uAnisoCoverage;  // the atlas's facing coverage (mip.comp)
 layout(binding = kVCTUnitSides) uniform sampler3D uSides;  // level 0's exit sides +x -x +y -y +z -z, full resolution
 #endif
 #endif
@@ -49,12 +49,17 @@ layout(binding = kVCTUnitSH + 1) uniform sampler3D uSHG;
 layout(binding = kVCTUnitSH + 2) uniform sampler3D uSHB;
 #endif
 
+// Work counted for the screen trace's report (trace.comp sums them; bounce.comp leaves them
+// unread): cone steps taken and texture calls made, by this invocation.
+uint gVCTSamples = 0u, gVCTFetches = 0u;
+
 vec3 levelCoord(int k, vec3 p) {
     return (p - uVCT.levelMinCell[k].xyz) / (uVCT.levelMinCell[k].w * float(uVCT.resolution)) +
            vec3(uVCT.levelWrap[k].xyz) / float(uVCT.resolution);
 }
 
 vec4 levelRadiance(int k, vec3 tc, float lod) {
+    gVCTFetches += 1u;
 #if VCT_LEVELS == 1
     return textureLod(uRadiance[0], tc, lod);
 #else
@@ -66,21 +71,6 @@ vec4 levelRadiance(int k, vec3 tc, float lod) {
 }
 
 #if VCT_ANISO
-// One mip m of the atlas: x kept half a texel inside the slab so the filter does not blend in
-// the neighbouring direction, and the fade to the zero border that y and z get from the sampler
-// applied to x by hand (a point u texels inside a face keeps 0.5 + u of the face texel).
-// `coverage` receives the weighted facing coverage (mip.comp).
-vec4 sampleAnisoMip(vec3 tc, float m, vec3 slab, vec3 w, out float coverage) {
-    float size = float(uVCT.resolution / 2) * exp2(-m);
-    float halfTexel = 0.5 / size;
-    float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
-    float fade = clamp(min(tc.x, 1.0 - tc.x) * size + 0.5, 0.0, 1.0);
-    vec3 px = vec3((x + slab.x) / 6.0, tc.yz), py = vec3((x + slab.y) / 6.0, tc.yz), pz = vec3((x + slab.z) / 6.0, tc.yz);
-    coverage = fade * (w.x * textureLod(uAnisoCoverage, px, m).r + w.y * textureLod(uAnisoCoverage, py, m).r +
-                       w.z * textureLod(uAnisoCoverage, pz, m).r);
-    return fade * (w.x * textureLod(uAniso, px, m) + w.y * textureLod(uAniso, py, m) + w.z * textureLod(uAniso, pz, m));
-}
-
 // Level 0 seen by a cone marching along dir: the sides facing back along it (side 2a + 1 when
 // dir[a] > 0), weighted dir^2 and by their coverage, so a side no fragment faces adds nothing
 // (the dark face of a thin wall stays dark even from a grazing direction); opacity from the
@@ -92,6 +82,7 @@ vec4 sampleSides(vec3 tc, vec3 dir) {
     float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
     vec3 w = dir * dir;
     vec3 slab = vec3(0.0, 2.0, 4.0) + step(0.0, dir);
+    gVCTFetches += 3u;
     vec4 sx = textureLod(uSides, vec3((x + slab.x) / 6.0, tc.yz), 0.0);
     vec4 sy = textureLod(uSides, vec3((x + slab.y) / 6.0, tc.yz), 0.0);
     vec4 sz = textureLod(uSides, vec3((x + slab.z) / 6.0, tc.yz), 0.0);
@@ -102,19 +93,34 @@ vec4 sampleSides(vec3 tc, vec3 dir) {
 }
 #endif
 
+// The atlas at lod for a cone marching along dir: the slab of each axis's sign (slab index
+// 2 axis + (dir < 0)) weighted dir^2, one fetch filtered across the two mips around lod. x is kept
+// half a texel of the coarser mip read inside the slab, so the filter does not blend in the
+// neighbouring direction, and the fade to the zero border that y and z get from the sampler is
+// applied to x by hand (a point u texels inside a face keeps 0.5 + u of the face texel), blended
+// between the two mips. Exact away from the x faces; within a texel of them the finer mip is read
+// at the coarser one's clamp (reading each mip at its own clamp took two fetches per direction and
+// cost the trace 1.8x).
 vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
-    // Weights dir^2, each from the slab of the direction's sign: slab index 2 axis + (dir < 0);
-    // the two mips around lod each read at their own clamp, then blended.
     vec3 w = dir * dir;
     vec3 slab = vec3(0.0, 2.0, 4.0) + step(dir, vec3(0.0));
-    float m = floor(lod), f = lod - m, coverage, coverageNext;
-    vec4 r = sampleAnisoMip(tc, m, slab, w, coverage);
-    if (f > 0.0) {
-        r = mix(r, sampleAnisoMip(tc, m + 1.0, slab, w, coverageNext), f);
-        coverage = mix(coverage, coverageNext, f);
-    }
-    // The mean radiance of the surfaces facing the cone, times the opacity.
+    float f = fract(lod);
+    float size = float(uVCT.resolution / 2) * exp2(-floor(lod));  // the finer mip's texels per slab
+    float halfTexel = (f > 0.0 ? 1.0 : 0.5) / size;
+    float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
+    float edge = min(tc.x, 1.0 - tc.x) * size;
+    float fade = mix(clamp(edge + 0.5, 0.0, 1.0), clamp(0.5 * edge + 0.5, 0.0, 1.0), f);
+    vec3 px = vec3((x + slab.x) / 6.0, tc.yz), py = vec3((x + slab.y) / 6.0, tc.yz), pz = vec3((x + slab.z) / 6.0, tc.yz);
+    gVCTFetches += VCT_SIDES != 0 ? 6u : 3u;
+    vec4 r = fade * (w.x * textureLod(uAniso, px, lod) + w.y * textureLod(uAniso, py, lod) + w.z * textureLod(uAniso, pz, lod));
+#if VCT_SIDES
+    // The mean radiance of the surfaces facing the cone (the coverage atlas, mip.comp), times the opacity.
+    float coverage = fade * (w.x * textureLod(uAnisoCoverage, px, lod).r + w.y * textureLod(uAnisoCoverage, py, lod).r +
+                             w.z * textureLod(uAnisoCoverage, pz, lod).r);
     return vec4(coverage > 1e-6 ? r.rgb / coverage * r.a : vec3(0.0), r.a);
+#else
+    return r;  // without face sides the coverage is the opacity, so r is the premultiplied radiance
+#endif
 }
 #endif
 
@@ -125,6 +131,7 @@ vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
 #if VCT_SH
     vec4 b = shBasis(-dir);
     float a = levelRadiance(0, tc, lod).a;
+    gVCTFetches += 3u;
     vec3 c = vec3(dot(textureLod(uSHR, tc, lod), b), dot(textureLod(uSHG, tc, lod), b), dot(textureLod(uSHB, tc, lod), b));
     return vec4(max(c, vec3(0.0)), a);
 #elif VCT_ANISO
@@ -186,6 +193,7 @@ vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, fl
         float step = uVCT.stepMultiplier * diameter;
         vec4 s;
         if (!sampleVoxels(apex + dir * t, diameter, step, dir, s)) break;
+        gVCTSamples += 1u;
         acc += (1.0 - acc.a) * s;
         if (t < occlusionDistance) occlusion = acc.a;
         t += step;

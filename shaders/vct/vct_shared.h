@@ -61,6 +61,13 @@ GI_CONST int kVCTImageSpecular = 1;    // and specular indirect light
 // Shader storage bindings of compact.comp's occupied-voxel list, which bounce.comp reads.
 GI_CONST int kVCTBufferDispatch = 0;   // indirect dispatch arguments and the entry count
 GI_CONST int kVCTBufferVoxels = 1;     // the entries
+// trace.comp's work counters, each 64-bit as (low, high) uints: kVCTWork* index the pairs.
+GI_CONST int kVCTBufferWork = 2;
+GI_CONST int kVCTWorkPixels = 0;       // traced pixels that hold a surface
+GI_CONST int kVCTWorkCones = 1;        // cones traced
+GI_CONST int kVCTWorkSamples = 2;      // cone steps (each samples the level that holds it, two in a level's blend band)
+GI_CONST int kVCTWorkFetches = 3;      // texture calls made by those samples
+GI_CONST int kVCTWorkCount = 4;
 
 // Uniform-buffer binding of VCTBlock.
 GI_CONST int kVCTBlockBinding = 0;
@@ -109,11 +116,12 @@ struct VCTParams {
     int lightFirst;
     int lightCount;
     int accumulate;      // adds to the exit radiance of the earlier batches
-    int sides;           // voxelize, clear, inject: also the per-side volumes (anisotropic dense grids)
+    int sides;           // voxelize, clear, inject: also the per-side volumes (anisotropic dense grids);
+                         // mip: also the coverage atlas
     int sliceAxis;       // voxelize: 0: each triangle along its dominant axis, grown (conservative);
                          // 1, 2, 3: along x, y, z, not grown, one cell per fragment (seed 001's slicing)
-    int fromSides;       // mip (anisotropic): 0 from the atlas's mip below, 1 from level 0's sides
-                         // (kVCTUnitMipSides), 2 from the isotropic level 0
+    int fromSides;       // mip (anisotropic): 1 from level 0's sides (kVCTUnitMipSides), 0 from the
+                         // source (the atlas's mip below, or the isotropic level 0)
     // mip
     ivec4 destSize;      // xyz: the level written, in voxels; w unused
     int sourceLevel;

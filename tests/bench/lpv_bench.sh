@@ -47,7 +47,7 @@ echo "texels per cell-step: 18 + 2 + 3 read, 6 written (16 bytes each: 368 read,
 if [ -d ../shared/scenes/sponza_crytek ]; then
   sponza=(presets/sponza.json --set technique=lpv --set lpv.cascadeCount=3 --set lpv.cascadeExtent=10
           --set lpv.propagationSteps=8 --set lpv.gridResolution=32)
-  # The steady state (static lights: the shadow maps kept from the first frame) and the
+  # The steady state (static lights: the shadow maps and RSMs kept from the first frame) and the
   # everything-dynamic frame (render.keepStaticWork=false redraws them every frame).
   for keep in true false; do
   for ((r = 0; r < runs; ++r)); do
@@ -57,7 +57,7 @@ if [ -d ../shared/scenes/sponza_crytek ]; then
   python3 - "$out" "$runs" "$keep" <<'PY'
 import json, statistics, sys
 out, n = sys.argv[1], int(sys.argv[2])
-print('steady state (static lights, shadow maps kept):' if sys.argv[3] == 'true' else 'everything dynamic (shadow maps redrawn):')
+print('steady state (static lights, shadow maps and RSMs kept):' if sys.argv[3] == 'true' else 'everything dynamic (shadow maps and RSMs redrawn):')
 runs = sorted((json.load(open('%s/run%d/stats.json' % (out, i))) for i in range(n)), key=lambda s: s['gpuMsTotal'])
 s = runs[len(runs) // 2]
 total = s['gpuMsTotal']
