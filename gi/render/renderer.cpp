@@ -85,7 +85,7 @@ Renderer::Renderer()
     mMaterialSampler = makeSampler(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
     mLUTSampler = makeSampler(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
     mMipPointSampler = makeSampler(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
-    glSamplerParameterf(mMaterialSampler.id(), GL_TEXTURE_MAX_ANISOTROPY, 4.0f);
+    // No anisotropy of its own: sampleMaterial() filters anisotropically (common/material.glsl).
     // Software rasterisers defer draws: serialise the pass timers there (gi/gl/timer.h).
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     mTimer.setSerialize(renderer && std::string(renderer).find("llvmpipe") != std::string::npos);

@@ -2,15 +2,18 @@
 // way by every pass that rasterizes the scene: the G-buffer, the shadow maps, LPV's RSMs and VCT's
 // voxelization. The path tracer (gi/reference/path_tracer.cpp) follows the same steps on the CPU.
 //
-// Material textures are read through sampleMaterial(). Mesa 22.3 llvmpipe's anisotropic filter,
-// with implicit derivatives, stalls for minutes per draw when a pixel's footprint spans thousands
-// of repeats of the texture: a file whose texture coordinates reach 1e5 stalled the shadow pass
-// for over 300 s. So a quad whose coordinates change by more than kMaxUVPerPixel repeats per
-// pixel samples with explicit derivatives bounded to that, and coordinates wrapped into [0, 1)
-// (every material sampler repeats): its footprint covers the texture many times over, and the
-// last mips are read either way. Every other quad takes the plain texture() path, so sane scenes
-// render the same pixels. The test is on coarse (per-quad) derivatives, so a quad never mixes the
-// two paths, and the plain path is fed a constant on wide quads so its derivatives are zero there.
+// Material textures are read through sampleMaterial(), which filters anisotropically itself:
+// up to kMaxAnisotropy trilinear probes spread along the pixel footprint's major axis, each
+// filtering major / N of it (N = min(ceil(major / minor), kMaxAnisotropy), the model of
+// EXT_texture_filter_anisotropic), and the material sampler has no anisotropy of its own.
+// Mesa 22.3 llvmpipe's anisotropic filter sums an elliptical footprint of texels: the G-buffer
+// of Sponza at 800x600 took 433 ms with it against 159 ms trilinear, and one sliver triangle of
+// its curtains took 2.2 s at 530x750; a file whose texture coordinates reach 1e5 stalled the
+// shadow pass for over 300 s. The probes bound the cost at N trilinear reads.
+// A quad whose coordinates change by more than kMaxUVPerPixel repeats per pixel samples with
+// derivatives bounded to that, and coordinates wrapped into [0, 1) (every material sampler
+// repeats): its footprint covers the texture many times over, and the last mips are read either
+// way. The test is on coarse (per-quad) derivatives, so a quad never mixes the two paths.
 #include "common/material_shared.h"
 
 const float kMaxUVPerPixel = 8.0;
@@ -21,15 +24,24 @@ layout(binding = kUnitBaseColor + kSlotNormalTex) uniform sampler2D uNormalTex;
 layout(binding = kUnitBaseColor + kSlotOcclusionTex) uniform sampler2D uOcclusionTex;
 layout(binding = kUnitBaseColor + kSlotEmissiveTex) uniform sampler2D uEmissiveMapTex;
 
+const float kMaxAnisotropy = 4.0;
+
 vec4 sampleMaterial(sampler2D tex, vec2 uv) {
-    vec2 dx = dFdxCoarse(uv), dy = dFdyCoarse(uv);
-    bool wide = !(max(max(abs(dx.x), abs(dx.y)), max(abs(dy.x), abs(dy.y))) <= kMaxUVPerPixel);
-    vec4 c = texture(tex, wide ? vec2(0.0) : uv);
-    if (wide) {
+    vec2 dx = dFdx(uv), dy = dFdy(uv);
+    vec2 cx = dFdxCoarse(uv), cy = dFdyCoarse(uv);
+    if (!(max(max(abs(cx.x), abs(cx.y)), max(abs(cy.x), abs(cy.y))) <= kMaxUVPerPixel)) {
         vec2 bound = vec2(kMaxUVPerPixel);
-        c = textureGrad(tex, fract(uv), clamp(dx, -bound, bound), clamp(dy, -bound, bound));
+        uv = fract(uv);
+        dx = clamp(dx, -bound, bound);
+        dy = clamp(dy, -bound, bound);
     }
-    return c;
+    vec2 size = vec2(textureSize(tex, 0));
+    float lx = length(dx * size), ly = length(dy * size);
+    vec2 major = lx > ly ? dx : dy, minor = lx > ly ? dy : dx;
+    float n = clamp(ceil(max(lx, ly) / max(min(lx, ly), 1e-8)), 1.0, kMaxAnisotropy);
+    vec4 sum = vec4(0.0);
+    for (float i = 0.0; i < n; i += 1.0) sum += textureGrad(tex, uv + major * ((i + 0.5) / n - 0.5), major / n, minor);
+    return sum / n;
 }
 
 bool materialHas(int slot) { return (uMaterialParams.textureMask & (1 << slot)) != 0; }
