@@ -82,6 +82,14 @@ FrameSettings skyFrame(const Scene& scene, const std::string& technique) {
     return fs;
 }
 
+std::unique_ptr<Renderer> renderedAfresh(const Scene& scene, FrameSettings fs) {
+    fs.render.keepStaticWork = false;
+    auto r = std::make_unique<Renderer>();
+    r->setScene(scene);
+    r->render(fs);
+    return r;
+}
+
 double meanIndirect(Renderer& r, const FrameSettings& fs) {
     r.render(fs);
     std::vector<float> px = r.readIndirectRadiance();

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace gi::test {
@@ -41,6 +42,9 @@ FrameSettings skyFrame(const Scene& scene, const std::string& technique);
 // DIR/SUITE_TEST_K.exr, K counting the test's measurements from 0 (to see what a figure means:
 // where a leak is, what a sky test's floor gathered).
 double meanIndirect(Renderer& r, const FrameSettings& fs);
+// A fresh renderer that has drawn fs keeping nothing from earlier frames (render.keepStaticWork
+// off): what a renderer that kept its static work must match, pixel for pixel.
+std::unique_ptr<Renderer> renderedAfresh(const Scene& scene, FrameSettings fs);
 // Mean luminance of the path tracer's one bounce of indirect light for fs (two surface bounces,
 // indirect paths only, 256 spp; cached), the light a single-bounce technique gathers.
 // `cached` says whether it came from the cache.
