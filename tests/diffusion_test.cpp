@@ -247,7 +247,8 @@ TEST_F(DiffusionGL, TheClosedRoomStaysDark) {
 
 // iterationsPerFrame spreads the solve over frames: the light arrives step by step, the frame
 // after the last step equals the whole solve in one frame, later frames hold it (the same
-// picture, without propagating), a camera move keeps it, and a light change starts it again.
+// picture, without propagating), a camera move keeps it, and a light change or shadow maps of
+// another size start it again.
 TEST_F(DiffusionGL, ASolveSpreadOverFramesMatchesTheWholeSolveAndRestartsOnChange) {
     Scene scene = makeBuiltinScene("cornell");
     Preset p;
@@ -275,6 +276,13 @@ TEST_F(DiffusionGL, ASolveSpreadOverFramesMatchesTheWholeSolveAndRestartsOnChang
     fs.lights[0].intensity *= 0.5f;
     double restarted = test::meanIndirect(spread, fs);
     EXPECT_LT(restarted, 0.75 * moved) << "a light change starts again from injection (8 steps, half the light)";
+    test::meanIndirect(spread, fs);
+    double completed = test::meanIndirect(spread, fs);
+    fs.render.shadowMapSize /= 2;  // the injection reads the shadow maps
+    double resized = test::meanIndirect(spread, fs);
+    std::printf("after the light change: first frame %.5f, completed %.5f; shadow maps resized: %.5f\n", restarted, completed, resized);
+    EXPECT_LT(resized, 0.9 * completed) << "shadow maps of another size start the solve again";
+    EXPECT_NEAR(resized, restarted, 0.05 * restarted);
 }
 
 const Diffusion& diffusionOf(const Renderer& r) {

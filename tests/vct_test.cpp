@@ -248,7 +248,7 @@ TEST_F(VCTGL, StaticGridIsVoxelizedOnce) {
 
 // Issue 17 item 4: static geometry under static lights keeps the lit volumes (injection, mips,
 // bounces). A camera move keeps them, with the pixels of a renderer that relights every frame; a
-// moved light, a VCT setting and keepStaticWork off each relight.
+// moved light, a VCT setting, the shadow maps' size and keepStaticWork off each relight.
 TEST_F(VCTGL, LitVolumesAreKeptUnderStaticLights) {
     Scene scene = makeBuiltinScene("cornell");
     FrameSettings fs = cornellFrame(scene, 32);
@@ -275,10 +275,13 @@ TEST_F(VCTGL, LitVolumesAreKeptUnderStaticLights) {
     brighter.vct.nudge += 0.5f;
     r.render(brighter);
     EXPECT_EQ(vctOf(r).lightingCount(), 3) << "a VCT setting relights them";
+    brighter.render.shadowMapSize /= 2;
+    r.render(brighter);
+    EXPECT_EQ(vctOf(r).lightingCount(), 4) << "shadow maps of another size relight them";
     brighter.render.keepStaticWork = false;
     r.render(brighter);
     r.render(brighter);
-    EXPECT_EQ(vctOf(r).lightingCount(), 5) << "keepStaticWork off: every frame";
+    EXPECT_EQ(vctOf(r).lightingCount(), 6) << "keepStaticWork off: every frame";
 }
 
 // Voxels of every level in logical order (toroidal addressing undone).

@@ -120,9 +120,11 @@ void Diffusion::indirect(FrameContext& ctx) {
     }
     shared::DiffusionParams p = params(fs);
     // The solve: all iterations every frame (iterationsPerFrame 0), or iterationsPerFrame steps a
-    // frame until all are done, then held until a light, a setting or the scene changes.
+    // frame until all are done, then held until a light, a setting, the scene or the size of the
+    // shadow maps the injection reads changes.
     const DiffusionSettings& s = fs.diffusion;
-    const bool restart = s.iterationsPerFrame == 0 || ctx.changes != 0 || mStepsDone < 0;
+    const bool restart = s.iterationsPerFrame == 0 || ctx.changes != 0 || mStepsDone < 0 || ctx.shadowSize != mSolveShadowSize;
+    mSolveShadowSize = ctx.shadowSize;
     {
         auto pass = ctx.timer.scope("diffusion.inject");
         if (restart) injectLight(ctx, grid, p);

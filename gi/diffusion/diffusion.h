@@ -121,6 +121,7 @@ private:
     size_t mVoxelBytes = 0, mBufferBytes = 0;
 
     int mStepsDone = -1;  // propagation steps of the current solve; -1: none started
+    int mSolveShadowSize = 0;  // of the shadow maps its injection read
     void allocate(const FrameSettings& fs);
     void ensureOrderBuffers(int res);
     shared::DiffusionParams params(const FrameSettings& fs) const;

@@ -27,7 +27,7 @@ struct RenderSettings {
     glm::vec3 ambient{0.03f, 0.03f, 0.03f};   // uniform incident radiance used as the indirect term when technique is none
     float memoryBudgetMB = float(kDefaultMemoryBudgetMB);  // refuse settings whose GPU allocations would exceed this
     float timeBudgetSeconds = 600.0f;         // refuse work (environment prefilter, reference) estimated to take longer, s
-    bool keepStaticWork = true;               // keep shadow maps and VCT's lit volumes while nothing they depend on changes
+    bool keepStaticWork = true;               // keep shadow maps, RSMs and VCT's lit volumes while nothing they depend on changes
 
     template <class V>
     void visit(V&& v) {
@@ -39,7 +39,7 @@ struct RenderSettings {
         v(memoryBudgetMB, forDevelopers({"memoryBudgetMB", "GPU memory budget; larger settings are refused", "MiB", 16, 1 << 20}));
         v(timeBudgetSeconds, forDevelopers({"timeBudgetSeconds", "Refuse work estimated to take longer than this", "s", 1, 1e6}));
         v(keepStaticWork, forDevelopers({"keepStaticWork",
-                                         "Keep shadow maps and VCT's lit volumes between frames while the scene, the lights and the settings "
+                                         "Keep shadow maps, LPV's RSMs and VCT's lit volumes between frames while the scene, the lights and the settings "
                                          "they depend on stay (off: redo them every frame, as for a dynamic scene; benchmarks compare both)",
                                          ""}));
     }

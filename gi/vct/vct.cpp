@@ -170,13 +170,16 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
 void VCT::indirect(FrameContext& ctx) {
     allocate(ctx.settings, ctx.changes);
     bool revoxelized = updateGrids(ctx);
-    // The lit volumes, their mips and bounces depend on the voxels, the lights (their shadow maps
-    // too) and VCT's settings alone, so static geometry under static lights keeps them (issue 17
+    // The lit volumes, their mips and bounces depend on the voxels, the lights with their shadow
+    // maps, and VCT's settings alone, so static geometry under static lights keeps them (issue 17
     // item 4): ctx.changes holds the cost tags of every light and VCT setting changed since the
-    // last frame, and a moved grid revoxelizes. The passes still open their timers.
-    bool relight = !mLit || revoxelized || ctx.changes != 0 || !ctx.settings.render.keepStaticWork;
+    // last frame, a moved grid revoxelizes, and the maps change with the lights, the scene and
+    // their size. The passes still open their timers.
+    bool relight = !mLit || revoxelized || ctx.changes != 0 || ctx.shadowSize != mLitShadowSize ||
+                   !ctx.settings.render.keepStaticWork;
     if (relight) ++mLightings;
     mLit = true;
+    mLitShadowSize = ctx.shadowSize;
     inject(ctx, relight);
     {
         auto pass = ctx.timer.scope("vct.mip");

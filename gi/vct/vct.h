@@ -188,6 +188,7 @@ private:
     VCTMode mMode = VCTMode::Dense;
     uint64_t mSceneId = 0;
     bool mLit = false;  // the volumes hold the light of the current voxels (indirect())
+    int mLitShadowSize = 0;  // of the shadow maps they were lit through
     int mLightings = 0;
     size_t mVoxelBytes = 0, mRadianceBytes = 0;
     std::vector<size_t> mVoxelizedVoxels;
