@@ -142,7 +142,6 @@ void Diffusion::indirect(FrameContext& ctx) {
 }
 
 void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p) {
-    const GLuint groups = gl::groupCount(mResolution, shared::kGroup3D);
     {
         mSurfaces.inject(ctx, grid, mAlbedo.id(), mNormal.id(), mExitFront.id(), mExitBack.id());
         mInitProg.use();
@@ -156,13 +155,12 @@ void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid,
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderDestination, mOrder[0].id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());
         mOrderParity = 0;
-        glDispatchCompute(groups, groups, groups);
+        gl::dispatch3D(mResolution);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 }
 
 void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
-    const GLuint groups = gl::groupCount(mResolution, shared::kGroup3D);
     {
         auto pass = ctx.timer.scope("diffusion.shade");
         p.invViewProj = ctx.invViewProj;
@@ -185,7 +183,7 @@ void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
         // The light in flight after the last step: step k writes mLight[(k + 1) % 2].
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferSource, mLight[std::max(mStepsDone, 0) % 2].id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());
-        glDispatchCompute(groups, groups, groups);
+        gl::dispatch3D(mResolution);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 }
@@ -195,7 +193,6 @@ void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuin
     shared::DiffusionParams p{};
     p.resolution = res;
     p.albedoMode = albedoMode == DiffusionAlbedo::Half ? 1 : 0;
-    const GLuint groups = gl::groupCount(res, shared::kGroup3D);
     ensureOrderBuffers(res);
     // Buffer views of the grids (emit.comp and gather.comp read and write through them).
     glTextureBuffer(mSourceView.id(), GL_RGBA32F, source);
@@ -214,7 +211,7 @@ void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuin
     glBindTextureUnit(shared::kDiffusionUnitStepSource, mSourceView.id());
     glBindTextureUnit(shared::kDiffusionUnitStepOrder, mOrderSourceView.id());
     glBindImageTexture(shared::kDiffusionImageStepOutgoing, mOutgoingView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(groups, groups, groups);
+    gl::dispatch3D(res);
     glMemoryBarrier(written);
     mGatherProg.use();
     glBindTextureUnit(shared::kDiffusionUnitStepSource, mOutgoingView.id());
@@ -222,7 +219,7 @@ void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuin
     glBindImageTexture(shared::kDiffusionImageStepAccum, mAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glBindImageTexture(shared::kDiffusionImageStepOrderDestination, mOrderDestinationView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glBindImageTexture(shared::kDiffusionImageStepOrderAccum, mOrderAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
-    glDispatchCompute(groups, groups, groups);
+    gl::dispatch3D(res);
     glMemoryBarrier(written);
     glBindTextureUnit(shared::kDiffusionUnitStepSource, 0);
     glBindTextureUnit(shared::kDiffusionUnitStepOrder, 0);

@@ -1,5 +1,6 @@
 #include "gi/gl/shader.h"
 
+#include "common/shared.h"
 #include "gi/util/error.h"
 #include "gi/util/paths.h"
 
@@ -8,6 +9,10 @@
 #include <sstream>
 
 namespace gi::gl {
+
+void dispatch3D(glm::ivec3 n) {
+    glDispatchCompute(groupCount(n.x, shared::kGroup3DX), groupCount(n.y, shared::kGroup3DY), groupCount(n.z, shared::kGroup3DZ));
+}
 
 namespace {
 

@@ -12,8 +12,12 @@
 
 namespace gi::gl {
 
-// Workgroups covering n items in groups of `size` (shared::kGroup2D, kGroup3D, kGroup1D).
+// Workgroups covering n items in groups of `size` (shared::kGroup2D, kGroup1D).
 inline GLuint groupCount(int n, int size) { return GLuint((n + size - 1) / size); }
+// Dispatches a volume pass over a grid of n cells a side (n.x by n.y by n.z), in the volume
+// passes' workgroups (shared::kGroup3DX by kGroup3DY by kGroup3DZ, common/shared.h).
+void dispatch3D(glm::ivec3 n);
+inline void dispatch3D(int n) { dispatch3D(glm::ivec3(n)); }
 
 struct StageSource {
     GLenum stage;      // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER, ...

@@ -392,8 +392,7 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryGBuffer, c.geometryGBuffer.id());
         glBindImageTexture(kLPVImageGeometryRSM, c.geometryRSMVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageGeometryGBuffer, c.geometryGBufferVolume.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        GLuint g = gl::groupCount(mResolution + 1, shared::kGroup3D);
-        glDispatchCompute(g, g, g);
+        gl::dispatch3D(mResolution + 1);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -413,8 +412,7 @@ void LPV::propagateStep(GLuint src, GLuint dst, GLuint accum, GLuint transmit, i
     glBindTextureUnit(kLPVUnitPropagateTransmit, mTransmitView.id());
     glBindImageTexture(kLPVImagePropagateDestination, mDestinationView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(kLPVImagePropagateAccum, mAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    GLuint g = gl::groupCount(resolution, shared::kGroup3D);
-    glDispatchCompute(g, g, g);
+    gl::dispatch3D(resolution);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -433,8 +431,7 @@ void LPV::propagate(const FrameContext& ctx) {
             glBindTextureUnit(kLPVUnitGeometryRSM, c.geometryRSMVolume.id());
             glBindTextureUnit(kLPVUnitGeometryGBuffer, c.geometryGBufferVolume.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferTransmit, c.transmit.id());
-            GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-            glDispatchCompute(g, g, g);
+            gl::dispatch3D(mResolution);
         }
         glBindSampler(kLPVUnitGeometryRSM, 0);
         glBindSampler(kLPVUnitGeometryGBuffer, 0);
@@ -469,8 +466,7 @@ void LPV::propagate(const FrameContext& ctx) {
             glBindTextureUnit(kLPVUnitBounceAlbedo, mAlbedoView.id());
             glBindImageTexture(kLPVImageBounceInject, mDestinationView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
             glBindImageTexture(kLPVImageBounceTotal, mAccumView.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-            GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-            glDispatchCompute(g, g, g);
+            gl::dispatch3D(mResolution);
             glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }
     }
@@ -484,8 +480,7 @@ void LPV::propagate(const FrameContext& ctx) {
         glBindImageTexture(kLPVImageSHR, c.shR.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageSHG, c.shG.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageSHB, c.shB.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-        glDispatchCompute(g, g, g);
+        gl::dispatch3D(mResolution);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

@@ -36,8 +36,7 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     mBlock.set(p);
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    GLuint g = gl::groupCount(res, shared::kGroup3D);
-    glDispatchCompute(g, g, g);
+    gl::dispatch3D(res);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
     if (mFramebufferSize != res) {
@@ -93,8 +92,7 @@ void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& gri
             bindBatchShadowMap(i, sm, vct::kVCTUnitShadow2D, vct::kVCTUnitShadowCube);
             if (sm.depth) glBindSampler(GLuint((sm.cube ? vct::kVCTUnitShadowCube : vct::kVCTUnitShadow2D) + i), mShadowSampler.id());
         }
-        GLuint g = gl::groupCount(grid.resolution, shared::kGroup3D);
-        glDispatchCompute(g, g, g);
+        gl::dispatch3D(grid.resolution);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         first += size_t(count);
     } while (first < lights.size());

@@ -272,8 +272,7 @@ void VCT::resolve(Level& level, bool bounced) {
         glBindImageTexture(vct::kVCTImageSHG, mSH[1].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(vct::kVCTImageSHB, mSH[2].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
-    GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-    glDispatchCompute(g, g, g);
+    gl::dispatch3D(mResolution);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
@@ -301,8 +300,7 @@ void VCT::buildMips() {
             glBindTextureUnit(vct::kVCTUnitMipSourceCoverage, mAnisoCoverage.id());
             glBindImageTexture(vct::kVCTImageMipDestCoverage, mAnisoCoverage.id(), dstLevel, GL_TRUE, 0, GL_WRITE_ONLY, GL_R16F);
         }
-        GLuint g = gl::groupCount(size, shared::kGroup3D);
-        glDispatchCompute(g, g, g);
+        gl::dispatch3D(size);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     };
     for (Level& l : mLevels)
@@ -384,8 +382,7 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
         glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferVoxels, l.occupiedList.id());
-        GLuint g = gl::groupCount(mResolution, shared::kGroup3D);
-        glDispatchCompute(g, g, g);
+        gl::dispatch3D(mResolution);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     for (int b = 1; b < s.bounceCount; ++b) {

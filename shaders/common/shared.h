@@ -28,9 +28,14 @@ GI_CONST float kSqrt3 = 1.7320508f;  // the diagonal of a unit cube
 GI_CONST int kSkyMaxMips = 32;
 
 // Workgroup sizes of the compute passes, declared by the shaders and divided by by the host:
-// image passes run 8x8 tiles, volume passes 4x4x4 bricks, list passes 64 entries.
+// image passes run 8x8 tiles, volume passes 16x2x2 rows (gl::dispatch3D), list passes 64 entries.
+// A volume group lies along x, the fastest axis of every grid's memory, so each SIMD vector of
+// llvmpipe's (8 lanes) covers 8 consecutive cells of a row and its fetches and stores touch
+// contiguous memory: 4x4x4 bricks took a 32^3 LPV propagation step 2.13 ms, rows 1.26 ms.
 GI_CONST int kGroup2D = 8;
-GI_CONST int kGroup3D = 4;
+GI_CONST int kGroup3DX = 16;
+GI_CONST int kGroup3DY = 2;
+GI_CONST int kGroup3DZ = 2;
 GI_CONST int kGroup1D = 64;
 
 // Texture units of the lighting and composite passes.

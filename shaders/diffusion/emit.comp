@@ -14,7 +14,7 @@
 //     face (inside thick geometry) sends nothing.
 #include "diffusion/common.glsl"
 
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(binding = kDiffusionUnitStepSource) uniform samplerBuffer uSource;  // 3 texels (R, G, B SH) per cell
 layout(binding = kDiffusionUnitStepOrder) uniform samplerBuffer uOrderSource;

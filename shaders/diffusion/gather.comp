@@ -14,7 +14,7 @@
 // to its accumulated order and reflects the light one order higher.
 #include "diffusion/common.glsl"
 
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uNormal;
 layout(binding = kDiffusionUnitStepSource) uniform samplerBuffer uOutgoing;  // 6 texels per cell, from emit.comp

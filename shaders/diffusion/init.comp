@@ -7,7 +7,7 @@
 // bounce order 1 (gather.comp counts the orders on).
 #include "diffusion/common.glsl"
 
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uNormal;
 layout(binding = kDiffusionImageExitFront, r11f_g11f_b10f) uniform readonly image3D uExitFront;

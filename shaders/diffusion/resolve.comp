@@ -9,7 +9,7 @@
 //     ramp from blue (1) through green (2) and yellow (3) to red (4 and more).
 #include "diffusion/common.glsl"
 
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(binding = kDiffusionImageView, rgba16f) uniform writeonly image3D uView;
 layout(binding = kDiffusionImageViewInFlight, rgba16f) uniform writeonly image3D uViewInFlight;

@@ -16,7 +16,7 @@
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 // Buffer views of the grids (propagate.comp says why not shader storage).
 layout(binding = kLPVUnitBounceGather) uniform samplerBuffer uGathered;  // 3 texels (R, G, B) per cell
 layout(binding = kLPVUnitBounceGeometryRSM) uniform samplerBuffer uFromRSM;  // one per corner

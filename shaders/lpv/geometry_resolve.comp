@@ -5,7 +5,7 @@
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(std430, binding = kLPVBufferGeometryRSM) readonly buffer FromRSM { float fromRSM[]; };
 layout(std430, binding = kLPVBufferGeometryGBuffer) readonly buffer FromGBuffer { float fromGBuffer[]; };
 layout(binding = kLPVImageGeometryRSM, rgba16f) uniform writeonly image3D uGeometryRSM;

@@ -15,7 +15,7 @@
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kLPVUnitPropagateSource) uniform samplerBuffer uSource;  // 3 texels (R, G, B) per cell
 layout(binding = kLPVUnitPropagateTransmit) uniform samplerBuffer uTransmit;  // 2 texels per cell, from transmit.comp
 layout(binding = kLPVImagePropagateDestination, rgba32f) uniform writeonly imageBuffer uDestination;

@@ -2,7 +2,7 @@
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kLPVUnitResolveAccum) uniform samplerBuffer uAccum;  // 3 texels (R, G, B) per cell
 layout(binding = kLPVImageSHR, rgba16f) uniform writeonly image3D uR;
 layout(binding = kLPVImageSHG, rgba16f) uniform writeonly image3D uG;

@@ -4,7 +4,7 @@
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kLPVUnitGeometryRSM) uniform sampler3D uGeometryRSM;
 layout(binding = kLPVUnitGeometryGBuffer) uniform sampler3D uGeometryGBuffer;
 layout(std430, binding = kLPVBufferTransmit) writeonly buffer Transmit { vec4 transmit[]; };  // 2 per cell: +x -x +y -y, +z -z

@@ -5,7 +5,7 @@
 #include "vct/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(std430, binding = kVCTBufferDispatch) buffer Dispatch { uint groupsX, groupsY, groupsZ, count; };
 layout(std430, binding = kVCTBufferVoxels) writeonly buffer Voxels { uint voxels[]; };

@@ -15,7 +15,7 @@
 #include "common/light.h"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
 layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform image3D uExitFront;

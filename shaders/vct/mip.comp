@@ -17,7 +17,7 @@
 #include "vct/vct_shared.h"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 layout(binding = kVCTUnitMipSource) uniform sampler3D uSource;
 layout(binding = kVCTUnitMipSourceCoverage) uniform sampler3D uSourceCoverage;
 layout(binding = kVCTUnitMipSides) uniform sampler3D uSides;

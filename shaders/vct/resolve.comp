@@ -6,7 +6,7 @@
 #include "vct/common.glsl"
 
 #include "common/shared.h"
-layout(local_size_x = kGroup3D, local_size_y = kGroup3D, local_size_z = kGroup3D) in;
+layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup3DZ) in;
 // After a bounce the host binds the bounced volumes at the exit bindings.
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
