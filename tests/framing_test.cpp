@@ -1,9 +1,13 @@
 // Where a file with no camera is viewed from (gi/reference/framing.h), on rooms and objects
-// made of quads whose normals face where they are meant to be seen from.
+// made of quads whose normals face where they are meant to be seen from; and the near plane the
+// raster draws a view with (gi/scene/camera.h rasterCamera).
 #include "gi/reference/framing.h"
+#include "gi/scene/camera.h"
 #include "gi/scene/mesh_builder.h"
 
 #include <gtest/gtest.h>
+
+#include <limits>
 
 namespace gi {
 namespace {
@@ -75,6 +79,40 @@ TEST(Framing, OnlyACameraLoadSceneMadeIsReplaced) {
     s.framedCamera = true;
     EXPECT_NE(frameCameraless(s), "");
     EXPECT_TRUE(insideBounds(s.bounds, s.cameras[0].eye));
+}
+
+// The raster's near plane (rasterCamera): moved up towards the scene's bounding sphere when the
+// eye is far outside it, never back, never past half the far plane, and never in front of any
+// point of the sphere, so nothing is clipped.
+TEST(RasterCamera, TheNearPlaneMovesUpToTheSceneAndNeverClipsIt) {
+    CameraSettings c;
+    c.eye = {1000.0f, 800.0f, 950.0f};
+    c.target = {0.0f, 0.0f, 0.0f};
+    c.near = 0.05f;
+    c.far = 1e6f;
+    const glm::vec3 centre(10.0f, -5.0f, 0.0f);
+    const float radius = 400.0f;
+    CameraSettings r = rasterCamera(c, centre, radius);
+    EXPECT_GT(r.near, 100.0f);
+    const glm::vec3 forward = glm::normalize(c.target - c.eye);
+    const float nearestPoint = glm::dot(centre - c.eye, forward) - radius;
+    EXPECT_LT(r.near, nearestPoint);
+    EXPECT_EQ(r.far, c.far);
+    EXPECT_EQ(r.eye, c.eye);
+    EXPECT_EQ(r.fovY, c.fovY);
+    // An eye inside the sphere (a room walked into) keeps its near plane.
+    c.eye = centre + glm::vec3(100.0f, 0.0f, 0.0f);
+    EXPECT_EQ(rasterCamera(c, centre, radius).near, c.near);
+    // Never past half the far plane; never back from the near plane the camera had.
+    c.eye = {0.0f, 0.0f, 5000.0f};
+    c.far = 2000.0f;
+    EXPECT_FLOAT_EQ(rasterCamera(c, centre, radius).near, 1000.0f);
+    c.near = 3000.0f;
+    c.far = 1e6f;
+    EXPECT_EQ(rasterCamera(c, centre, radius).near, 3000.0f);
+    // An empty scene's bounds (an infinite radius) change nothing.
+    c.near = 0.05f;
+    EXPECT_EQ(rasterCamera(c, glm::vec3(0.0f), std::numeric_limits<float>::infinity()).near, c.near);
 }
 
 }  // namespace

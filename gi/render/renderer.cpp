@@ -251,10 +251,10 @@ void Renderer::render(const FrameSettings& fs) {
     selectPasses(fs);
     mLightBuffer.upload(fs.lights, mScene->emitters(), mScene->bounds(), mShadowSize);
     mScene->bindTriangleEmitters();
-    mCamera = fs.camera;
+    mCamera = rasterCamera(fs.camera, mScene->bounds().center(), mScene->bounds().radius());
 
-    glm::mat4 view = viewMatrix(fs.camera);
-    glm::mat4 proj = projectionMatrix(fs.camera, float(fs.width) / float(fs.height));
+    glm::mat4 view = viewMatrix(mCamera);
+    glm::mat4 proj = projectionMatrix(mCamera, float(fs.width) / float(fs.height));
     glm::mat4 viewProj = proj * view;
     // The shadow maps as the passes read them (their matrices are set when they are drawn).
     mShadowViews.assign(fs.lights.size(), ShadowMapView{});

@@ -29,4 +29,14 @@ void takeSceneCamera(CameraSettings& camera, const CameraSettings& sceneCamera) 
     camera.far = sceneCamera.far;
 }
 
+CameraSettings rasterCamera(const CameraSettings& c, const glm::vec3& center, float radius) {
+    CameraSettings out = c;
+    glm::vec3 f = c.target - c.eye;
+    if (glm::length(f) < 1e-8f) return out;
+    float nearest = glm::dot(center - c.eye, glm::normalize(f)) - radius;
+    float fitted = std::min(0.5f * nearest, 0.5f * c.far);
+    if (std::isfinite(fitted) && fitted > c.near) out.near = fitted;
+    return out;
+}
+
 }  // namespace gi

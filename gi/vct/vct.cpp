@@ -466,8 +466,9 @@ void VCT::trace(const FrameContext& ctx) {
     vct::VCTParams u{};
     u.imageSize = glm::ivec4(low, full);
     u.toFull = glm::vec4(toFull, 0.0f, 0.0f);
-    u.nearPlane = ctx.settings.camera.near;
-    u.farPlane = ctx.settings.camera.far;
+    // The clip planes of the projection drawn with (the renderer's rasterCamera), from its matrix.
+    u.nearPlane = ctx.proj[3][2] / (ctx.proj[2][2] - 1.0f);
+    u.farPlane = ctx.proj[3][2] / (ctx.proj[2][2] + 1.0f);
     mUpsampleProg.use();
     mBlock.set(u);
     glBindTextureUnit(vct::kVCTUnitLowIndirect, mLowIndirect.id());
