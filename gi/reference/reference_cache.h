@@ -17,7 +17,7 @@
 
 namespace gi {
 
-inline constexpr int kReferenceVersion = 3;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend)
+inline constexpr int kReferenceVersion = 4;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend); 4: the surface offset scales with the scene, not a floor of 1e-4 units
 
 uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
 
