@@ -3,9 +3,10 @@
 // light P; then the geometry volume's surfels reflect P as the next bounce's injection.
 //
 // A corner of the geometry volume holds its surfels' summed lobes GV = sum (A / cell face) *
-// cosLobe(n) and their albedo. Lit by irradiance E = kLPVRadianceScale * dot(P, cosLobe(-n)) /
-// cell face (shade's convention), they reflect flux albedo * E * A, injected as inject.comp does, flux / pi *
-// cosLobe(n): albedo / pi * kLPVRadianceScale * dot(P, cosLobe(-n)) * GV, the cell size cancelling. n is the
+// cosLobe(n) and their albedo. Lit by irradiance E = kLPVRadianceScale * dot(P, cosLobe(-n)) (P
+// holds intensity per cell face, inject.comp; shade's convention), they reflect flux albedo * E * A,
+// injected as inject.comp does, flux per cell face / pi * cosLobe(n): albedo / pi *
+// kLPVRadianceScale * dot(P, cosLobe(-n)) * GV. n is the
 // direction of GV's band 1 (a corner with surfels facing opposite ways reflects along their
 // mean). As first-bounce VPLs move half a cell along their normal, a corner's surfels (the cube of
 // one cell around it) move half a cell along n, and each cell takes the share of that cube it

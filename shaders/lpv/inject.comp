@@ -1,6 +1,9 @@
 // Injection: every RSM texel is a virtual point light with intensity flux / pi * max(n.w, 0),
 // moved `nudge` cells along its normal, added to its cell's SH (float adds through
-// atomicCompSwap, exact under contention).
+// atomicCompSwap, exact under contention). The flux is the texel's exitance times its surfel's
+// area (rsm.frag), counted in units of the cell's face area: the volumes then hold intensity per
+// cell face, whose size does not grow or shrink with the scene's units (half floats hold it), and
+// shading reads radiance from them without dividing by the cell's area.
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
@@ -23,10 +26,10 @@ void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(t, ivec2(uLPV.width, uLPV.height)))) return;
     vec4 pos = imageLoad(uPosition, t);
-    vec3 flux = imageLoad(uFlux, t).rgb;
+    float cellSize = uLPV.gridMinCell.w;
+    vec3 flux = imageLoad(uFlux, t).rgb * (pos.w / (cellSize * cellSize));
     if (pos.w <= 0.0 || max(flux.r, max(flux.g, flux.b)) <= 0.0) return;
     vec3 n = normalize(imageLoad(uNormal, t).xyz);
-    float cellSize = uLPV.gridMinCell.w;
     vec3 p = pos.xyz + n * uLPV.nudge * cellSize;
     ivec3 c = ivec3(floor((p - uLPV.gridMinCell.xyz) / cellSize));
     if (!insideGrid(c)) return;

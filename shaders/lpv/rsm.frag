@@ -1,7 +1,10 @@
 // Reflective shadow map texel: world position (w: the surfel's world area), normal facing the
-// light, diffuse albedo (the geometry volume's, for bounces), and the flux the surfel reflects diffusely: albedo * light * projected texel area
-// (directional) or albedo * intensity * texel solid angle (spot, and each face of a point light's
-// cube), so the total does not depend on the map's resolution. The intensity towards the texel
+// light, diffuse albedo (the geometry volume's, for bounces), and the light the surfel reflects
+// diffusely per unit of its area (its radiant exitance, albedo * irradiance): the flux it reflects,
+// albedo * light * projected texel area (directional) or albedo * intensity * texel solid angle
+// (spot, and each face of a point light's cube), over its world area. Injection multiplies it back
+// by the area in 32-bit floats: an exitance fits a half float at any scene scale, a flux does not
+// (it scales with the square of the units: a Cornell box 2 cm wide underflowed to black). The intensity towards the texel
 // is the light model's, color * lightProfile(l, dist, cosAxis), whatever the light's kind. The
 // light is entry lightIndex of the frame's light buffer.
 // ALPHA_CUT 0: the variant for Opaque materials, without discard (render/gbuffer.frag says why).
@@ -55,7 +58,7 @@ void main() {
     }
     if (dot(n, L) < 0.0) n = -n;  // two-sided, as the raster and the path tracer
     float cosTheta = max(dot(n, L), kLPVMinRSMCosine);
-    oFlux = vec4(base.rgb * (1.0 - metallic) * flux, 1.0);
+    oFlux = vec4(base.rgb * (1.0 - metallic) * flux * (cosTheta / area), 1.0);
     oAlbedo = vec4(base.rgb * (1.0 - metallic), 1.0);
     oNormal = vec4(n, 1.0);
     oPosition = vec4(vWorld, area / cosTheta);

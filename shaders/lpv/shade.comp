@@ -1,7 +1,8 @@
 // Shading: per pixel, irradiance from the finest cascade that holds the point, blended towards
 // the next cascade over the outer tenth of its extent (LH04), written as E / pi (the indirect
-// term's convention). Radiance in a cell is its SH intensity over the cell's face area, times
-// kLPVRadianceScale (the accumulation's calibration, lpv_shared.h).
+// term's convention). Radiance in a cell is its SH intensity over the cell's face area (the
+// volumes hold it so, inject.comp), times kLPVRadianceScale (the accumulation's calibration,
+// lpv_shared.h).
 // Lookups are taken half a cell in front of the surface. Self-illumination damping compares the irradiance half a cell in front of the surface with
 // half a cell behind it: where it grows behind, the light comes from the surface's own VPLs.
 #include "lpv/common.glsl"
@@ -22,7 +23,7 @@ vec3 irradiance(int k, vec3 p, vec3 n) {
     int sh = kLPVSHChannels * k;
     vec3 e = vec3(dot(texture(uSH[sh + kSHR], tc), lobe), dot(texture(uSH[sh + kSHG], tc), lobe),
                   dot(texture(uSH[sh + kSHB], tc), lobe));
-    return max(e, 0.0) * kLPVRadianceScale / (uLPV.cascadeMinCell[k].w * uLPV.cascadeMinCell[k].w);
+    return max(e, 0.0) * kLPVRadianceScale;
 }
 
 // Irradiance from the green SH alone: damping needs a brightness ratio, not colour, and one
@@ -38,7 +39,7 @@ vec3 dampedIrradiance(int k, vec3 p, vec3 n) {
     // cell corners around it and would otherwise hold back the light that reaches it.
     vec3 e = irradiance(k, p + n * h, n);
     if (uLPV.damping <= 0.0) return e;
-    float front = e.g * uLPV.cascadeMinCell[k].w * uLPV.cascadeMinCell[k].w / kLPVRadianceScale;
+    float front = e.g / kLPVRadianceScale;
     float back = greenIrradiance(k, p - n * h, n);
     float ratio = back > front && back > 0.0 ? front / back : 1.0;
     return e * mix(1.0, ratio, uLPV.damping);
