@@ -201,13 +201,9 @@ TEST_F(GL, ShadowedPointIsDarkForEveryLightType) {
 // face in view is at a grazing angle to it (such a face shadows itself through the filter's outer
 // taps, a separate matter: see the closing note of 2026-12-05).
 TEST_F(GL, ConvexBoxFarFromATinyNearPlaneIsNotSelfShadowed) {
-    Scene s;
-    MeshBuilder b(s);
-    int grey = b.material("grey", glm::vec3(0.6f), 1.0f);
-    b.box(grey, {0.0f, 200.0f, 0.0f}, {200.0f, 150.0f, 250.0f}, 45.0f);
-    s.finalize();
+    Scene scene = test::box({0.0f, 200.0f, 0.0f}, {200.0f, 150.0f, 250.0f}, 45.0f, 0.6f);
     Renderer r;
-    r.setScene(s);
+    r.setScene(scene);
     LightSettings sun;
     sun.type = LightType::Directional;
     sun.direction = glm::normalize(glm::vec3(-0.45f, -0.7f, -0.6f));

@@ -57,14 +57,16 @@ Scene openFloor() {
     return s;
 }
 
-Scene closedBox() {
+Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo) {
     Scene s;
     MeshBuilder b(s);
-    int white = b.material("white", glm::vec3(0.8f), 1.0f);
-    b.box(white, {0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f);
+    int m = b.material("box", glm::vec3(albedo), 1.0f);
+    b.box(m, centre, half, yawDeg);
     s.finalize();
     return s;
 }
+
+Scene closedBox() { return box({0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f, 0.8f); }
 
 FrameSettings skyFrame(const Scene& scene, const std::string& technique) {
     Preset p;

@@ -36,6 +36,8 @@ void lookIntoClosedRoom(CameraSettings& camera);
 // lit only by a constant environment of radiance 1 (no light).
 Scene openFloor();
 Scene closedBox();
+// A scene of one box of half size `half`, turned yawDeg about +y, its faces of the given albedo.
+Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo);
 FrameSettings skyFrame(const Scene& scene, const std::string& technique);
 // Mean luminance of the indirect light the lighting pass adds (Renderer::readIndirectRadiance)
 // after rendering fs. With GI_TEST_IMAGES=DIR set, it also writes the image it averaged as

@@ -388,6 +388,7 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
     fs.camera.target = {0.0f, 0.0f, 0.0f};
     fs.camera.up = {0.0f, 0.0f, -1.0f};
     fs.camera.fovY = 20.0f;
+    fs.vct.bounceCount = 1;  // one bounce, as the analytic value and the reference below count it
     Renderer r;
     r.setScene(scene);
     // The panel's radiance at (x, z): albedo / pi * I cos / r^2 = I h / (pi r^3), r from the lamp
