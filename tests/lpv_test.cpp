@@ -406,16 +406,11 @@ TEST_F(LPVGL, PointLightIndirectMatchesTheReference) {
 // the half floats underflowed and the LPV added nothing (the mean 0.45x the reference's).
 TEST_F(LPVGL, TheIndirectLightIsTheSameAtAnyScale) {
     auto mean = [](float scale) {
-        Scene scene = makeBuiltinScene("cornell_lamp");
-        for (Vertex& v : scene.vertices) v.position *= scale;
-        scene.finalize();
+        Scene scene = test::scaledBuiltinScene("cornell_lamp", scale);
         Preset p;
         p.header.technique.name = "lpv";
         FrameSettings fs = frameSettings(p, scene, 64, 64);
-        fs.camera.eye *= scale;
-        fs.camera.target *= scale;
-        fs.camera.near *= scale;
-        fs.camera.far *= scale;
+        test::scaleCamera(fs.camera, scale);
         Renderer r;
         r.setScene(scene);
         return test::meanIndirect(r, fs);

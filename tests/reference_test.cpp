@@ -199,14 +199,9 @@ TEST(Reference, DeterministicWhateverThePassSplit) {
 // 1e-4 world units, a sizeable step in a 2 cm room: the small box came out 17 % darker.
 TEST(Reference, TheImageIsTheSameAtAnyScale) {
     auto mean = [](float scale) {
-        Scene scene = makeBuiltinScene("cornell_lamp");
-        for (Vertex& v : scene.vertices) v.position *= scale;
-        scene.finalize();
+        Scene scene = test::scaledBuiltinScene("cornell_lamp", scale);
         FrameSettings fs = frameSettings(Preset{}, scene, 24, 24);
-        fs.camera.eye *= scale;
-        fs.camera.target *= scale;
-        fs.camera.near *= scale;
-        fs.camera.far *= scale;
+        test::scaleCamera(fs.camera, scale);
         ReferenceSettings rs;
         rs.spp = 64;
         return meanLuminance(PathTracer(scene).render(fs, rs).rgb, 3);

@@ -66,6 +66,20 @@ Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo) {
     return s;
 }
 
+Scene scaledBuiltinScene(const std::string& name, float scale) {
+    Scene s = makeBuiltinScene(name);
+    for (Vertex& v : s.vertices) v.position *= scale;
+    s.finalize();
+    return s;
+}
+
+void scaleCamera(CameraSettings& camera, float scale) {
+    camera.eye *= scale;
+    camera.target *= scale;
+    camera.near *= scale;
+    camera.far *= scale;
+}
+
 Scene closedBox() { return box({0.0f, 0.5f, 0.0f}, {2.0f, 0.5f, 2.0f}, 0.0f, 0.8f); }
 
 FrameSettings skyFrame(const Scene& scene, const std::string& technique) {

@@ -38,6 +38,10 @@ Scene openFloor();
 Scene closedBox();
 // A scene of one box of half size `half`, turned yawDeg about +y, its faces of the given albedo.
 Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo);
+// The scale tests: a built-in scene with every vertex scaled about the origin, and a camera
+// (eye, target and clip planes) scaled with it, so the view is the same at any size.
+Scene scaledBuiltinScene(const std::string& name, float scale);
+void scaleCamera(CameraSettings& camera, float scale);
 FrameSettings skyFrame(const Scene& scene, const std::string& technique);
 // Mean luminance of the indirect light the lighting pass adds (Renderer::readIndirectRadiance)
 // after rendering fs. With GI_TEST_IMAGES=DIR set, it also writes the image it averaged as

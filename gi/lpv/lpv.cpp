@@ -555,7 +555,7 @@ std::vector<DebugView> LPV::debugViews() const {
         DebugView sh{"lpv.volume" + std::to_string(k), c.shR.id(), GL_TEXTURE_3D, kViewSHVolume, 512, 512, 0, 1, 1};
         sh.extra[0] = c.shG.id();
         sh.extra[1] = c.shB.id();
-        sh.scale = 1.0f;  // the volumes hold intensity per cell face (inject.comp)
+        // sh.scale stays 1: the volumes hold intensity per cell face (inject.comp), read as radiance.
         v.push_back(sh);
         v.push_back({"lpv.geometryRSM" + std::to_string(k), c.geometryRSMVolume.id(), GL_TEXTURE_3D, kViewVolume, 512, 512, 0, 1, 1});
         v.push_back({"lpv.geometryGBuffer" + std::to_string(k), c.geometryGBufferVolume.id(), GL_TEXTURE_3D, kViewVolume, 512,

@@ -49,9 +49,9 @@ struct VCTSettings {
     float stepMultiplier = 1.0f;      // step = multiplier * cone diameter; below 1 oversamples
     float maxDistance = 0.0f;         // cone length in world units; 0 = the grid's diagonal
     // 1: direct light in the voxels; 2 or 3 re-inject traced indirect light. 2 by default: against
-    // the reference (8 bounces) one bounce left the light of a closed room far short (the Cornell
-    // box files' SSIM 0.64-0.79 at 1, 0.67-0.83 at 2; the default preset 0.749 -> 0.812, Sponza
-    // 0.793 -> 0.808), and 3 over-brightens Sponza and the lamp-lit box. A bounce costs one cone
+    // the reference (8 bounces) one bounce left the light of a closed room far short (the nine
+    // Cornell box files' SSIM 0.52-0.81 at 1, 0.55-0.85 at 2; the default preset 0.749 -> 0.812,
+    // Sponza 0.793 -> 0.808), and 3 over-brightens Sponza and the lamp-lit box. A bounce costs one cone
     // trace per lit voxel when the light changes (Sponza 64^3: about 0.7 s on llvmpipe), nothing
     // in the editor's steady state.
     int bounceCount = 2;
