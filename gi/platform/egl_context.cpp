@@ -1,6 +1,7 @@
 #include "gi/platform/egl_context.h"
 
 #include "gi/gl/debug.h"
+#include "gi/platform/memory.h"
 #include "gi/util/error.h"
 
 #include <epoxy/egl.h>
@@ -17,6 +18,7 @@ static std::string eglErrorText() {
 }
 
 EGLContextHeadless::EGLContextHeadless(bool debug) {
+    keepFreedMemory();  // llvmpipe frees and reallocates megabytes per draw (gi/platform/memory.h)
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless") &&
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
         throw Error("EGL: no surfaceless platform (install libegl-mesa0)");
