@@ -217,6 +217,10 @@ int run(int argc, char** argv) {
     double total = 0;
     for (const auto& p : renderer.passStats()) {
         passes.push_back({{"name", p.name}, {"gpuMs", p.gpuMs}, {"memoryBytes", p.memoryBytes}});
+        if (p.name == "shadows" || p.name == "gbuffer") {
+            passes.back()["draws"] = p.draws;
+            passes.back()["triangles"] = p.triangles;
+        }
         total += p.gpuMs;
     }
     // Each volume the passes hold (name, format, bytes): the per-volume memory.

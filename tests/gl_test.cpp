@@ -119,6 +119,71 @@ TEST_F(GL, StaticShadowMapsAreKeptAndRedrawnWhenALightMoves) {
     EXPECT_EQ(r.shadowDrawCount(), 5) << "keepStaticWork off: every frame";
 }
 
+// Cluster culling (render.cullClusters, GPUScene::drawIf): a row of spheres (2304 triangles, nine
+// clusters each) of which the camera sees the middle, lit by a spot light and a point light whose
+// cube faces each see part of the row. The frame must be the same pixels as without culling, with
+// fewer triangles drawn in the G-buffer and in the shadow maps.
+TEST_F(GL, CulledClustersLeaveThePixelsAsTheyWere) {
+    Scene scene;
+    MeshBuilder b(scene);
+    int grey = b.material("grey", glm::vec3(0.6f), 0.7f);
+    b.quad(grey, {-24, 0, 4}, {48, 0, 0}, {0, 0, -8});
+    for (int i = -5; i <= 5; ++i) b.sphere(grey, {4.0f * float(i), 1.0f, 0.0f}, 1.0f);
+    scene.finalize();
+    ASSERT_GT(scene.draws[1].indexCount / 3, 2 * GPUScene::kClusterTriangles) << "a sphere spans several clusters";
+    Preset p;
+    FrameSettings fs = frameSettings(p, scene, 96, 64);
+    fs.camera.eye = {0.5f, 2.0f, 7.0f};
+    fs.camera.target = {0.5f, 1.0f, 0.0f};
+    fs.camera.fovY = 40.0f;
+    LightSettings spot;
+    spot.type = LightType::Spot;
+    spot.position = {0.0f, 6.0f, 3.0f};
+    spot.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -0.5f));
+    spot.outerConeDeg = 40.0f;
+    spot.innerConeDeg = 30.0f;
+    spot.intensity = 30.0f;
+    LightSettings point;
+    point.type = LightType::Point;
+    point.position = {2.0f, 2.5f, 2.0f};
+    point.intensity = 10.0f;
+    fs.lights = {spot, point};
+    auto render = [&](bool cull, uint64_t& gbuffer, uint64_t& shadows) {
+        FrameSettings f = fs;
+        f.render.cullClusters = cull;
+        Renderer r;
+        r.setScene(scene);
+        r.render(f);
+        r.resolveTimings();
+        for (const PassStats& s : r.passStats()) {
+            if (s.name == "gbuffer") gbuffer = s.triangles;
+            if (s.name == "shadows") shadows = s.triangles;
+        }
+        return r.readHDR();
+    };
+    uint64_t gAll = 0, sAll = 0, gCulled = 0, sCulled = 0;
+    std::vector<float> all = render(false, gAll, sAll);
+    std::vector<float> culled = render(true, gCulled, sCulled);
+    std::printf("triangles drawn, without and with culling: gbuffer %llu, %llu; shadows %llu, %llu\n", (unsigned long long)gAll,
+                (unsigned long long)gCulled, (unsigned long long)sAll, (unsigned long long)sCulled);
+    EXPECT_EQ(culled, all) << "culling changed pixels";
+    int lit = 0;
+    for (size_t i = 0; i < all.size(); i += 4) lit += all[i] > 0.01f;
+    EXPECT_GT(lit, int(all.size() / 4) / 2) << "too little of the frame is lit to compare";
+    const uint64_t triangles = scene.triangleCount();
+    EXPECT_EQ(gAll, 2 * triangles) << "without culling: the depth pass and the G-buffer pass draw every triangle";
+    EXPECT_EQ(sAll, 7 * triangles) << "without culling: the spot's map and the point light's six faces";
+    EXPECT_LT(gCulled, gAll / 2) << "the camera sees three of the eleven spheres";
+    EXPECT_LT(sCulled, sAll / 2) << "each cube face sees part of the row";
+    // LPV's RSMs (the spot's map and the point light's cube) are culled alike.
+    fs.technique = "lpv";
+    fs.lpv.gridResolution = 32;
+    uint64_t unused = 0;
+    std::vector<float> lpvAll = render(false, unused, unused);
+    EXPECT_EQ(render(true, unused, unused), lpvAll) << "culling changed LPV's pixels";
+    EXPECT_NE(lpvAll, all) << "LPV added no light";
+}
+
 TEST_F(GL, LambertPlaneMatchesAnalyticRadiance) {
     const float albedo = 0.5f;
     Renderer r;

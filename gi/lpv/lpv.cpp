@@ -234,10 +234,13 @@ void LPV::renderRSMs(const FrameContext& ctx) {
         mMaterialBinding.begin(0);
         // Opaque materials first, with the variant that tests depth before shading, then the rest.
         auto bind = [&](const Material& mat, int) { mMaterialBinding.bind(ctx.scene, mat); };
+        // Clusters outside the map's frustum are left out (render.cullClusters; a directional
+        // light's map covers only its cascade, so the finer cascades draw a part of the scene).
+        const glm::mat4* cull = fs.render.cullClusters ? &m.viewProj : nullptr;
         mRSMOpaqueProg.use();
-        ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode == AlphaMode::Opaque; }, bind);
+        ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode == AlphaMode::Opaque; }, bind, cull);
         mRSMProg.use();
-        ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode != AlphaMode::Opaque; }, bind);
+        ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode != AlphaMode::Opaque; }, bind, cull);
         mMaterialBinding.end();
     };
     size_t index = 0;

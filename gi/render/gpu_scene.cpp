@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gi {
 
@@ -31,6 +32,24 @@ GPUScene::GPUScene(const Scene& scene)
         glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
         glVertexArrayAttribBinding(vao, a, 0);
     }
+    // Clusters: runs of kClusterTriangles triangles of each draw, with their bounds.
+    mClusterFirst.push_back(0);
+    for (const Draw& d : mDraws) {
+        for (uint32_t i = 0; i < d.indexCount; i += kClusterTriangles * 3) {
+            Cluster k;
+            k.firstIndex = d.firstIndex + i;
+            k.indexCount = std::min(d.indexCount - i, kClusterTriangles * 3);
+            k.min = glm::vec3(std::numeric_limits<float>::max());
+            k.max = glm::vec3(-std::numeric_limits<float>::max());
+            for (uint32_t j = k.firstIndex; j < k.firstIndex + k.indexCount; ++j) {
+                const glm::vec3& p = scene.vertices[scene.indices[j]].position;
+                k.min = glm::min(k.min, p);
+                k.max = glm::max(k.max, p);
+            }
+            mClusters.push_back(k);
+        }
+        mClusterFirst.push_back(uint32_t(mClusters.size()));
+    }
     for (const Texture& t : scene.textures) {
         int levels = 1 + int(std::floor(std::log2(std::max(t.width, t.height))));
         // Colour (base colour, emission) is sRGB, data maps (metallic-roughness, occlusion, normal) linear.
@@ -40,6 +59,23 @@ GPUScene::GPUScene(const Scene& scene)
         mBytes += tex.bytes();
         mTextures.push_back(std::move(tex));
     }
+}
+
+bool GPUScene::outside(const glm::mat4& viewProj, const Cluster& k) {
+    // Clip-space corners; the box is outside when every corner fails the same plane
+    // (-w <= x, y, z <= w), a test that holds for corners behind the eye too.
+    int out[6] = {0, 0, 0, 0, 0, 0};
+    for (int c = 0; c < 8; ++c) {
+        glm::vec3 p((c & 1) ? k.max.x : k.min.x, (c & 2) ? k.max.y : k.min.y, (c & 4) ? k.max.z : k.min.z);
+        glm::vec4 q = viewProj * glm::vec4(p, 1.0f);
+        for (int a = 0; a < 3; ++a) {
+            out[2 * a] += q[a] < -q.w;
+            out[2 * a + 1] += q[a] > q.w;
+        }
+    }
+    for (int i = 0; i < 6; ++i)
+        if (out[i] == 8) return true;
+    return false;
 }
 
 void GPUScene::bindTriangleEmitters() const {

@@ -52,6 +52,9 @@ struct PassStats {
     std::string name;
     double gpuMs = 0.0;
     size_t memoryBytes = 0;
+    // The raster passes that draw the scene (shadows, gbuffer): GL draws issued and triangles
+    // sent down the pipeline after culling (GPUScene::drawIf); 0 for a pass that kept its result.
+    uint64_t draws = 0, triangles = 0;
 };
 
 // Memory of one named volume or buffer a pass holds (stats.json "volumes").

@@ -28,6 +28,7 @@ struct RenderSettings {
     float memoryBudgetMB = float(kDefaultMemoryBudgetMB);  // refuse settings whose GPU allocations would exceed this
     float timeBudgetSeconds = 600.0f;         // refuse work (environment prefilter, reference) estimated to take longer, s
     bool keepStaticWork = true;               // keep shadow maps, RSMs and VCT's lit volumes while nothing they depend on changes
+    bool cullClusters = true;                 // the G-buffer and shadow passes skip triangle clusters outside the view (same pixels)
 
     template <class V>
     void visit(V&& v) {
@@ -42,6 +43,10 @@ struct RenderSettings {
                                          "Keep shadow maps, LPV's RSMs and VCT's lit volumes between frames while the scene, the lights and the settings "
                                          "they depend on stay (off: redo them every frame, as for a dynamic scene; benchmarks compare both)",
                                          ""}));
+        v(cullClusters, forDevelopers({"cullClusters",
+                                       "The G-buffer and shadow passes leave out clusters of 256 triangles that lie wholly outside the camera's or the "
+                                       "light's frustum (the pixels are the same; stats.json counts the triangles drawn)",
+                                       ""}));
     }
 
     size_t memoryBudgetBytes() const { return size_t(double(memoryBudgetMB) * 1024.0 * 1024.0); }

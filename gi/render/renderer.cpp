@@ -298,7 +298,7 @@ void Renderer::render(const FrameSettings& fs) {
         if (fs.lights[i].castShadows)
             mShadowViews[i] = {mShadows[i].depth.id(), light::cubeShadow(int(fs.lights[i].type)), mLightBuffer[i].shadowViewProj,
                                mLightBuffer[i].shadow.x};
-    renderGBuffer(viewProj);
+    renderGBuffer(viewProj, fs.render.cullClusters);
     const glm::vec4 zero(0.0f);
     glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
     runStage(ctx, [](Pass& p, FrameContext& c) { p.indirect(c); });
@@ -314,8 +314,12 @@ void Renderer::render(const FrameSettings& fs) {
 void Renderer::renderShadows(const FrameSettings& fs, uint64_t key) {
     auto pass = mTimer.scope("shadows");
     // The maps already hold this key's shadows (the editor's steady state): nothing to redraw.
-    if (fs.render.keepStaticWork && key == mShadowKey) return;
+    if (fs.render.keepStaticWork && key == mShadowKey) {
+        mShadowDrawn = {};
+        return;
+    }
     mShadowKey = key;
+    mScene->resetDrawn();
     ++mShadowDraws;
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -334,15 +338,17 @@ void Renderer::renderShadows(const FrameSettings& fs, uint64_t key) {
             mBlock.set(params);
             mMaterialBinding.bind(*mScene, m);
         };
+        const glm::mat4 frustum = params.viewProj;
+        const glm::mat4* cull = fs.render.cullClusters ? &frustum : nullptr;
         if (!opaque) {
             cut.use();
-            mScene->draw(bind);
+            mScene->drawIf([](const Material&) { return true; }, bind, cull);
             return;
         }
         opaque->use();
-        mScene->drawIf([](const Material& m) { return m.alphaMode == AlphaMode::Opaque; }, bind);
+        mScene->drawIf([](const Material& m) { return m.alphaMode == AlphaMode::Opaque; }, bind, cull);
         cut.use();
-        mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind);
+        mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind, cull);
     };
 
     for (size_t i = 0; i < fs.lights.size(); ++i) {
@@ -374,9 +380,11 @@ void Renderer::renderShadows(const FrameSettings& fs, uint64_t key) {
         }
     }
     mMaterialBinding.end();
+    mShadowDrawn = mScene->resetDrawn();
 }
 
-void Renderer::renderGBuffer(const glm::mat4& viewProj) {
+void Renderer::renderGBuffer(const glm::mat4& viewProj, bool cullClusters) {
+    const glm::mat4* cull = cullClusters ? &viewProj : nullptr;
     auto pass = mTimer.scope("gbuffer");
     glBindFramebuffer(GL_FRAMEBUFFER, mGBufferFBO.id());
     glViewport(0, 0, mWidth, mHeight);
@@ -394,6 +402,7 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glDisable(GL_CULL_FACE);
     RenderParams params{};
     params.viewProj = viewProj;
+    mScene->resetDrawn();
     mMaterialBinding.begin(mMaterialSampler.id());
     // Per draw: the draw's first triangle (to find each triangle's emitter) and the material.
     // Opaque materials first, with the program that tests depth before shading (gbuffer.frag).
@@ -408,7 +417,7 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     mDepthProg.use();
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     mBlock.set(params);
-    mScene->drawIf(opaque, [](const Material&, int) {});
+    mScene->drawIf(opaque, [](const Material&, int) {}, cull);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
@@ -418,13 +427,14 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj) {
     glStencilFunc(GL_EQUAL, 0, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
     mGBufferOpaqueProg.use();
-    mScene->drawIf(opaque, bind);
+    mScene->drawIf(opaque, bind, cull);
     glDisable(GL_STENCIL_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     mGBufferProg.use();
-    mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind);
+    mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind, cull);
     mMaterialBinding.end();
+    mGBufferDrawn = mScene->resetDrawn();
 }
 
 void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx) {
@@ -610,7 +620,13 @@ std::vector<PassStats> Renderer::passStats() const {
         else if (r.name == "tonemap") bytes = mLDR.bytes();
         else
             for (const ActivePass& p : mPasses) bytes += p.pass->passMemory(r.name);
-        out.push_back({r.name, r.gpuMs, bytes});
+        PassStats st{r.name, r.gpuMs, bytes};
+        if (r.name == "shadows" || r.name == "gbuffer") {
+            const GPUScene::Drawn& d = r.name == "shadows" ? mShadowDrawn : mGBufferDrawn;
+            st.draws = d.draws;
+            st.triangles = d.triangles;
+        }
+        out.push_back(st);
     }
     return out;
 }

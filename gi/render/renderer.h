@@ -124,6 +124,7 @@ private:
     };
 
     std::unique_ptr<GPUScene> mScene;
+    GPUScene::Drawn mShadowDrawn, mGBufferDrawn;  // the last frame's work (passStats)
     // The G-buffer and directional shadow programs come in two variants: for Opaque materials
     // without discard (early depth testing), and for Mask and Blend ones (their draws go last).
     gl::Program mDepthProg, mGBufferProg, mGBufferOpaqueProg, mShadowProg, mShadowOpaqueProg, mShadowPointProg, mCompositeProg, mLightProg,
@@ -169,7 +170,7 @@ private:
     void resize(int width, int height);
     void prepareShadows(const FrameSettings& fs);
     void renderShadows(const FrameSettings& fs, uint64_t key);
-    void renderGBuffer(const glm::mat4& viewProj);
+    void renderGBuffer(const glm::mat4& viewProj, bool cullClusters);
     void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx);
     void renderToneMap(const FrameSettings& fs);
 };

@@ -64,6 +64,8 @@ total = s['gpuMsTotal']
 lpv = sum(p['gpuMs'] for p in s['passes'] if p['name'].startswith('lpv.'))
 print('sponza 800x600, 3 cascades 32^3, 8 steps: frame %.0f ms (range %.0f-%.0f, %d runs): %s' % (
     total, runs[0]['gpuMsTotal'], runs[-1]['gpuMsTotal'], n, ', '.join('%s %.1f' % (p['name'], p['gpuMs']) for p in s['passes'])))
+print('  raster work: %s' % ', '.join('%s %d draws, %d triangles' % (p['name'], p.get('draws', 0), p.get('triangles', 0))
+                                     for p in s['passes'] if p['name'] in ('shadows', 'gbuffer')))
 print('  LPV passes %.0f ms; the peer (anchor): frame 1952 ms, LPV passes about 1900 ms: frame %.1fx, LPV passes %.1fx faster' % (
     lpv, 1952.0 / total, 1900.0 / lpv))
 PY

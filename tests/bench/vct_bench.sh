@@ -52,6 +52,8 @@ print('%s: frame %.1f ms (range %.0f-%.0f over %d runs; %s), VCT volumes %.1f Mi
     ', '.join('%s %.1f' % p for p in vct), mem))
 print('  work: %.0f traced pixels, %.1f samples per pixel, %.2f per cone, %.2f texture calls per sample' % (
     w.get('tracedPixels', 0), w.get('samplesPerPixel', 0), w.get('samplesPerCone', 0), w.get('textureCallsPerSample', 0)))
+print('  raster work: %s' % ', '.join('%s %d draws, %d triangles' % (p['name'], p.get('draws', 0), p.get('triangles', 0))
+                                     for p in s['passes'] if p['name'] in ('shadows', 'gbuffer')))
 if os.path.exists(out + '/score/stats.json'):
     print('  the same settings at 320x180: SSIM %.4f against the reference' % json.load(open(out + '/score/stats.json'))['metrics']['ssim'])
 PY
