@@ -217,7 +217,7 @@ int run(int argc, char** argv) {
     double total = 0;
     for (const auto& p : renderer.passStats()) {
         passes.push_back({{"name", p.name}, {"gpuMs", p.gpuMs}, {"memoryBytes", p.memoryBytes}});
-        if (p.name == "shadows" || p.name == "gbuffer") {
+        if (p.countsDraws) {
             passes.back()["draws"] = p.draws;
             passes.back()["triangles"] = p.triangles;
         }

@@ -21,8 +21,8 @@ public:
     // textures; given a third parameter it also gets the draw's first triangle (the index of its
     // gl_PrimitiveID 0 in per-triangle buffers such as uTriangleEmitter).
     template <class F>
-    void draw(F&& bindMaterial) const {
-        drawIf([](const Material&) { return true; }, bindMaterial);
+    void draw(F&& bindMaterial, const glm::mat4* cull = nullptr) const {
+        drawIf([](const Material&) { return true; }, bindMaterial, cull);
     }
     // The draws whose material `include(material)` accepts, in the scene's order. With `cull`
     // (a view-projection), the clusters of a draw (runs of kClusterTriangles triangles, issue 17

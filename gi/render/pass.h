@@ -52,8 +52,10 @@ struct PassStats {
     std::string name;
     double gpuMs = 0.0;
     size_t memoryBytes = 0;
-    // The raster passes that draw the scene (shadows, gbuffer): GL draws issued and triangles
-    // sent down the pipeline after culling (GPUScene::drawIf); 0 for a pass that kept its result.
+    // The raster passes that draw the scene (shadows, gbuffer) count their work: GL draws issued
+    // and triangles sent down the pipeline after culling (GPUScene::drawIf), 0 for a pass that
+    // kept its result. countsDraws is false for every other pass.
+    bool countsDraws = false;
     uint64_t draws = 0, triangles = 0;
 };
 

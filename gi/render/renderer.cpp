@@ -338,11 +338,11 @@ void Renderer::renderShadows(const FrameSettings& fs, uint64_t key) {
             mBlock.set(params);
             mMaterialBinding.bind(*mScene, m);
         };
-        const glm::mat4 frustum = params.viewProj;
-        const glm::mat4* cull = fs.render.cullClusters ? &frustum : nullptr;
+        // params.viewProj stays put while the draws change only firstTriangle.
+        const glm::mat4* cull = fs.render.cullClusters ? &params.viewProj : nullptr;
         if (!opaque) {
             cut.use();
-            mScene->drawIf([](const Material&) { return true; }, bind, cull);
+            mScene->draw(bind, cull);
             return;
         }
         opaque->use();
@@ -623,6 +623,7 @@ std::vector<PassStats> Renderer::passStats() const {
         PassStats st{r.name, r.gpuMs, bytes};
         if (r.name == "shadows" || r.name == "gbuffer") {
             const GPUScene::Drawn& d = r.name == "shadows" ? mShadowDrawn : mGBufferDrawn;
+            st.countsDraws = true;
             st.draws = d.draws;
             st.triangles = d.triangles;
         }

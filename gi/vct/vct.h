@@ -71,8 +71,8 @@
 //     read slightly inside (reading each mip at its own clamp took two calls per direction).
 //     A sample also reads level 0 for the blend below lod 1, executed (masked) by a CPU
 //     rasterizer whether taken or not: 4 calls per sample against the isotropic volume's 1, and
-//     the trace takes about 2.4x the isotropic one's time on llvmpipe (Cornell 1280x720, full
-//     resolution: 1.83 s against 0.75 s).
+//     the trace takes about 2.45x the isotropic one's time on llvmpipe (Cornell 1280x720, full
+//     resolution, medians of 3 alternating runs: 2.36 s against 0.96 s).
 //   - Cone samples read kVCTFootprintLod (1.25) mips finer than the cone's diameter (issue 13):
 //     a trilinear sample of a mip reaches 1.5 texels, so at the diameter's own mip every sample
 //     of a 60-degree cone took in the receiver's own surface, and a floor under a lit panel
