@@ -175,12 +175,21 @@ TEST_F(GL, CulledClustersLeaveThePixelsAsTheyWere) {
     EXPECT_EQ(sAll, 7 * triangles) << "without culling: the spot's map and the point light's six faces";
     EXPECT_LT(gCulled, gAll / 2) << "the camera sees three of the eleven spheres";
     EXPECT_LT(sCulled, sAll / 2) << "each cube face sees part of the row";
-    // LPV's RSMs (the spot's map and the point light's cube) are culled alike.
+    // LPV's RSMs (the spot's map and the point light's cube) are culled alike. LPV's injection
+    // sums floats with atomics in whatever order the threads run, so two runs of the same RSMs
+    // may differ in the last bits, and the RGBA16F frame then by one step of fp16 (this comparison
+    // failed once, exact, under a loaded suite): each value within 2^-10 of itself.
     fs.technique = "lpv";
     fs.lpv.gridResolution = 32;
     uint64_t unused = 0;
     std::vector<float> lpvAll = render(false, unused, unused);
-    EXPECT_EQ(render(true, unused, unused), lpvAll) << "culling changed LPV's pixels";
+    std::vector<float> lpvCulled = render(true, unused, unused);
+    ASSERT_EQ(lpvCulled.size(), lpvAll.size());
+    double worst = 0.0;
+    for (size_t i = 0; i < lpvAll.size(); ++i)
+        worst = std::max(worst, std::abs(double(lpvCulled[i]) - lpvAll[i]) / std::max(std::abs(double(lpvAll[i])), 1e-3));
+    std::printf("LPV with and without culling: largest relative difference %.2e\n", worst);
+    EXPECT_LE(worst, 1.0 / 1024.0) << "culling changed LPV's pixels";
     EXPECT_NE(lpvAll, all) << "LPV added no light";
 }
 
