@@ -98,7 +98,7 @@ std::vector<Member> vctMembers() {
     using T = vct::VCTParams;
     return {GI_MEMBER(T, gridMin),       GI_MEMBER(T, wrapOffset),   GI_MEMBER(T, clipMin),       GI_MEMBER(T, clipMax),
             GI_MEMBER(T, resolution),    GI_MEMBER(T, cellSize),     GI_MEMBER(T, lightFirst),    GI_MEMBER(T, lightCount),
-            GI_MEMBER(T, accumulate),    GI_MEMBER(T, sides),        GI_MEMBER(T, sliceAxis),     GI_MEMBER(T, fromSides),
+            GI_MEMBER(T, accumulate),    GI_MEMBER(T, sides),        GI_MEMBER(T, sliceAxis),     GI_MEMBER(T, level0),
             GI_MEMBER(T, destSize),     GI_MEMBER(T, sourceLevel),
             GI_MEMBER(T, direction),     GI_MEMBER(T, sourceOffsetX), GI_MEMBER(T, destOffsetX),  GI_MEMBER(T, coneCount),
             GI_MEMBER(T, tanHalf),       GI_MEMBER(T, maxDistance),  GI_MEMBER(T, occlusionDistance), GI_MEMBER(T, levelCount),

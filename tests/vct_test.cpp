@@ -189,24 +189,32 @@ TEST_F(VCTGL, MipsAreConsistent) {
         fine = coarse;
     }
     // Anisotropic: the six directions side by side along x in one atlas (slab d starts at x = d n).
-    // Its level 0 from the base level, and its level 1 from its level 0, for every direction:
-    // along the direction, front + (1 - front.a) * back over the 4 child pairs, averaged.
+    // Its mip 0 is the base level in every slab; each mip above from the one below, for every
+    // direction: along the direction, front + (1 - front.a) * back over the 4 child pairs, averaged.
     const gl::Texture& atlas = v.anisotropicAtlas();
-    ASSERT_EQ(atlas.width(), 6 * (res / 2));
-    ASSERT_EQ(atlas.height(), res / 2);
+    ASSERT_EQ(atlas.width(), 6 * res);
+    ASSERT_EQ(atlas.height(), res);
     auto atlasIdx = [](int n, int d, int x, int y, int z) { return ((size_t(z) * n + y) * 6 * n + size_t(d) * n + x) * 4; };
     std::vector<float> base = readRGBA(radiance, 0);
-    std::vector<float> atlas0 = readRGBA(atlas, 0), atlas1 = readRGBA(atlas, 1);
-    for (int d = 0; d < 6; ++d)
-        for (int level : {0, 1}) {
-            int n = (res / 2) >> level, axis = d / 2;
+    std::vector<std::vector<float>> atlasMips = {readRGBA(atlas, 0), readRGBA(atlas, 1), readRGBA(atlas, 2)};
+    for (int d = 0; d < 6; ++d) {
+        double copied = 0;
+        for (int z = 0; z < res; ++z)
+            for (int y = 0; y < res; ++y)
+                for (int x = 0; x < res; ++x)
+                    for (int c = 0; c < 4; ++c)
+                        copied = std::max(copied, double(std::abs(atlasMips[0][atlasIdx(res, d, x, y, z) + size_t(c)] -
+                                                                  base[idx(res, x, y, z) + size_t(c)])));
+        EXPECT_EQ(copied, 0.0) << "anisotropic direction " << d << ": mip 0 is the base level";
+        for (int level : {1, 2}) {
+            int n = res >> level, axis = d / 2;
             bool positive = d % 2 == 0;
-            // The source texel of child c: the base level (level 0) or the atlas slab one level up.
+            // The source texel of child c: the atlas slab one mip down.
             auto child = [&](glm::ivec3 c) {
-                const float* t = level == 0 ? &base[idx(res, c.x, c.y, c.z)] : &atlas0[atlasIdx(2 * n, d, c.x, c.y, c.z)];
+                const float* t = &atlasMips[size_t(level - 1)][atlasIdx(2 * n, d, c.x, c.y, c.z)];
                 return glm::dvec4(t[0], t[1], t[2], t[3]);
             };
-            const std::vector<float>& dest = level == 0 ? atlas0 : atlas1;
+            const std::vector<float>& dest = atlasMips[size_t(level)];
             double worst = 0, largest = 0;
             for (int z = 0; z < n; ++z)
                 for (int y = 0; y < n; ++y)
@@ -227,9 +235,10 @@ TEST_F(VCTGL, MipsAreConsistent) {
                             largest = std::max(largest, 0.25 * sum[c]);
                         }
                     }
-            EXPECT_LT(worst, 2e-3) << "anisotropic direction " << d << " level " << level;
-            EXPECT_GT(largest, 0.01) << "anisotropic direction " << d << " level " << level << " is empty";
+            EXPECT_LT(worst, 2e-3) << "anisotropic direction " << d << " mip " << level;
+            EXPECT_GT(largest, 0.01) << "anisotropic direction " << d << " mip " << level << " is empty";
         }
+    }
 }
 
 // The grid is static: a second frame with the same scene and grid does not voxelize again.
@@ -598,8 +607,8 @@ TEST_F(VCTGL, VAOScalesTheIndirectLightByTheConesVisibility) {
 
 // Issue 17 item 3: the screen trace counts its work (VCT::report). In a view that surfaces fill,
 // every pixel is traced with the diffuse set and the specular cone; the isotropic volume takes one
-// texture call a sample, the anisotropic atlas three (four where a sample still blends level 0
-// in), the SH volumes four; half the step takes more samples (not twice: most cones here end
+// texture call a sample, the anisotropic atlas three (its mip 0 is level 0, so no sample reads
+// beside it), the SH volumes four; half the step takes more samples (not twice: most cones here end
 // opaque on a wall within three steps), and a cone that ends sooner fewer.
 TEST_F(VCTGL, TraceCountsItsWork) {
     Scene scene = test::twoRooms();
@@ -625,7 +634,7 @@ TEST_F(VCTGL, TraceCountsItsWork) {
     auto base = work("anisotropic");
     EXPECT_EQ(base["tracedPixels"], double(fs.width * fs.height));
     EXPECT_EQ(base["cones"], base["tracedPixels"] * double(makeConeSet(fs.vct).cones.size() + 1));
-    EXPECT_EQ(base["textureCallsPerSample"], 4.0) << "three directions from the atlas and level 0, every sample";
+    EXPECT_EQ(base["textureCallsPerSample"], 3.0) << "three directions from the atlas, every sample";
     EXPECT_GE(base["samplesPerCone"], 1.0);
     EXPECT_NEAR(base["samplesPerPixel"], base["samples"] / base["tracedPixels"], 1e-9 * base["samplesPerPixel"]);
     fs.vct.stepMultiplier = 0.5f;

@@ -99,9 +99,9 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
         double scaled = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
         bytes += size_t(scaled) * 16;  // the low-resolution trace targets
     }
-    if (anisotropicOn(s)) bytes += 6 * mipChain(8, res / 2, std::max(mips - 1, 1));
+    if (anisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
     if (anisotropicOn(s) && s.faceSides) {
-        bytes += 6 * mipChain(2, res / 2, std::max(mips - 1, 1));                 // the coverage atlas
+        bytes += 6 * mipChain(2, res, mips);                            // the coverage atlas
         bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
     }
     if (shOn(s)) bytes += 3 * mipChain(8, res, mips);
@@ -152,11 +152,11 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     mAnisoCoverage = gl::Texture();
     for (auto& t : mSH) t = gl::Texture();
     if (mAnisotropic) {
-        mAniso = gl::Texture::create3D(GL_RGBA16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
+        mAniso = gl::Texture::create3D(GL_RGBA16F, 6 * r, r, r, mMipCount);
         mRadianceBytes += mAniso.bytes();
     }
     if (mFaceSides) {
-        mAnisoCoverage = gl::Texture::create3D(GL_R16F, 6 * (r / 2), r / 2, r / 2, std::max(mMipCount - 1, 1));
+        mAnisoCoverage = gl::Texture::create3D(GL_R16F, 6 * r, r, r, mMipCount);
         mRadianceBytes += mAnisoCoverage.bytes();
     }
     if (mSHVoxels)
@@ -280,13 +280,13 @@ void VCT::buildMips() {
     mMipProg.use();
     // size: the destination's voxels per side; srcOffset, dstOffset: the first x of the
     // direction's slab in the anisotropic atlas (0 elsewhere).
-    // fromSides (anisotropic only): 1 when the first mip reads level 0's sides, not src; with
+    // level0 (vct.faceSides only): 1 writes the atlas's mip 0 from level 0's sides; with
     // vct.faceSides the anisotropic passes also write the coverage atlas.
     auto level = [&](const gl::Texture& src, int srcLevel, const gl::Texture& dst, int dstLevel, int direction, int size,
-                     int srcOffset, int dstOffset, int fromSides = 0) {
+                     int srcOffset, int dstOffset, int level0 = 0) {
         vct::VCTParams p{};
         p.resolution = mResolution;
-        p.fromSides = fromSides;
+        p.level0 = level0;
         p.sides = mFaceSides ? 1 : 0;
         p.sourceLevel = srcLevel;
         p.destSize = glm::ivec4(glm::ivec3(size), 0);
@@ -309,14 +309,16 @@ void VCT::buildMips() {
         for (auto& t : mSH)
             for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1, mResolution >> m, 0, 0);
     if (mAnisotropic) {
-        // The first mip from level 0's sides (vct.faceSides) or its isotropic volume, the rest
-        // from the mip below, each with its coverage (mip.comp).
+        // Mip 0 is level 0 (its sides with vct.faceSides), the rest from the mip below, each with
+        // its coverage (mip.comp).
         if (mFaceSides) glBindTextureUnit(vct::kVCTUnitMipSides, mLevels[0].sidesRadiance.id());
-        const int half = mResolution / 2;
+        const int r = mResolution;
         for (int d = 0; d < 6; ++d) {
-            level(mLevels[0].radiance, 0, mAniso, 0, d, half, 0, d * half, mFaceSides ? 1 : 0);
-            for (int m = 1; m < mMipCount - 1; ++m)
-                level(mAniso, m - 1, mAniso, m, d, half >> m, d * (half >> (m - 1)), d * (half >> m));
+            if (mFaceSides)
+                level(mLevels[0].radiance, 0, mAniso, 0, d, r, 0, d * r, 1);
+            else  // a copy (mip.comp's level0 pass took 4x the whole mip chain's time on llvmpipe)
+                glCopyImageSubData(mLevels[0].radiance.id(), GL_TEXTURE_3D, 0, 0, 0, 0, mAniso.id(), GL_TEXTURE_3D, 0, d * r, 0, 0, r, r, r);
+            for (int m = 1; m < mMipCount; ++m) level(mAniso, m - 1, mAniso, m, d, r >> m, d * (r >> (m - 1)), d * (r >> m));
         }
     }
 }
@@ -329,10 +331,8 @@ void VCT::bindRadiance() const {
     }
     glBindTextureUnit(GLuint(vct::kVCTUnitAniso), mAniso.id());
     glBindSampler(GLuint(vct::kVCTUnitAniso), mLinear.id());
-    glBindTextureUnit(GLuint(vct::kVCTUnitSides), mLevels[0].sidesRadiance.id());
     glBindSampler(GLuint(vct::kVCTUnitAnisoCoverage), mLinear.id());
     glBindTextureUnit(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoCoverage.id());
-    glBindSampler(GLuint(vct::kVCTUnitSides), mLinear.id());
     for (int c = 0; c < 3; ++c) {
         glBindTextureUnit(GLuint(vct::kVCTUnitSH + c), mSH[size_t(c)].id());
         glBindSampler(GLuint(vct::kVCTUnitSH + c), mLinear.id());
@@ -490,8 +490,11 @@ std::vector<DebugView> VCT::debugViews() const {
         v.push_back({"vct.albedo" + s, l.albedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
         v.push_back({"vct.normal" + s, l.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1});
     }
-    if (mAnisotropic)  // +X -X +Y -Y +Z -Z from left to right
-        v.push_back({"vct.anisotropic", mAniso.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, 6 * (r / 2), r / 2, 0, 1, 1});
+    if (mAnisotropic) {  // +X -X +Y -Y +Z -Z from left to right, from mip 1 (mip 0 is level 0 in every slab)
+        DebugView aniso{"vct.anisotropic", mAniso.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, 6 * (r / 2), r / 2, 0, 1, 1};
+        aniso.level = 1;
+        v.push_back(aniso);
+    }
     if (mSHVoxels) {
         DebugView sh{"vct.sh", mSH[0].id(), GL_TEXTURE_3D, shared::kViewSHVolume, r, r, 0, 1, 1};
         sh.extra[0] = mSH[1].id();
@@ -523,7 +526,7 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
         v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});
     }
     if (mAnisotropic)
-        v.push_back({"anisotropic", std::to_string(mResolution / 2) + "^3 RGBA16F x 6 (one atlas), " + std::to_string(mMipCount - 1) + " mips",
+        v.push_back({"anisotropic", r + "RGBA16F x 6 (one atlas)" + mips,
                      mAniso.bytes()});
     if (mSHVoxels) v.push_back({"sh", r + "RGBA16F x 3" + mips, 3 * mSH[0].bytes()});
     if (mLowIndirect.bytes())

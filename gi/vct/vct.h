@@ -20,7 +20,8 @@
 //      set on both sides through the current mips and adds albedo * E / pi (seed 000's
 //      re-injection of the first traced indirect light), then resolve and mips again.
 //   4. Mips [vct.mip]: a box filter of premultiplied RGBA (or SH); with `anisotropic`, six
-//      volumes of half resolution, one per marching direction, each compositing the children's
+//      volumes, one per marching direction, whose mip 0 is level 0 (copied) and whose mips above
+//      each composite the children's
 //      pairs front to back along it (seed 003 section 1.6 describes them, unimplemented there),
 //      with `faceSides` also a coverage atlas beside them (mip.comp).
 //   Passes 2 to 4 depend on the voxels, the lights (with their shadow maps) and VCT's settings
@@ -69,10 +70,12 @@
 //     filtered across the two mips around its lod by the sampler; x is clamped half a texel of
 //     the coarser mip inside the slab, so within a texel of the grid's x faces the finer mip is
 //     read slightly inside (reading each mip at its own clamp took two calls per direction).
-//     A sample also reads level 0 for the blend below lod 1, executed (masked) by a CPU
-//     rasterizer whether taken or not: 4 calls per sample against the isotropic volume's 1, and
-//     the trace takes about 2.45x the isotropic one's time on llvmpipe (Cornell 1280x720, full
-//     resolution, medians of 3 alternating runs: 2.36 s against 0.96 s).
+//     The atlas's mip 0 is level 0 itself (6 copies, 6 x 8 bytes a voxel), so lod 0 to 1 is
+//     read from it too: 3 calls per sample against the isotropic volume's 1. Before, level 0
+//     was read from its own volume for the blend below lod 1, a fourth call that a CPU
+//     rasterizer executes (masked) whether taken or not, and the trace took 2.36x the isotropic
+//     one's time on llvmpipe; now 1.91x (Cornell 1280x720, full resolution, medians of 3
+//     alternating runs: 1.88 s -> 1.52 s, isotropic 0.80 s).
 //   - Cone samples read kVCTFootprintLod (1.25) mips finer than the cone's diameter (issue 13):
 //     a trilinear sample of a mip reaches 1.5 texels, so at the diameter's own mip every sample
 //     of a 60-degree cone took in the receiver's own surface, and a floor under a lit panel

@@ -40,7 +40,6 @@ layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
 layout(binding = kVCTUnitAniso) uniform sampler3D uAniso;  // +X -X +Y -Y +Z -Z side by side along x
 #if VCT_SIDES
 layout(binding = kVCTUnitAnisoCoverage) uniform sampler3D uAnisoCoverage;  // the atlas's facing coverage (mip.comp)
-layout(binding = kVCTUnitSides) uniform sampler3D uSides;  // level 0's exit sides +x -x +y -y +z -z, full resolution
 #endif
 #endif
 #if VCT_SH
@@ -71,41 +70,22 @@ vec4 levelRadiance(int k, vec3 tc, float lod) {
 }
 
 #if VCT_ANISO
-// Level 0 seen by a cone marching along dir: the sides facing back along it (side 2a + 1 when
-// dir[a] > 0), weighted dir^2 and by their coverage, so a side no fragment faces adds nothing
-// (the dark face of a thin wall stays dark even from a grazing direction); opacity from the
-// isotropic volume.
-#if VCT_SIDES
-vec4 sampleSides(vec3 tc, vec3 dir) {
-    float size = float(uVCT.resolution);
-    float halfTexel = 0.5 / size;
-    float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
-    vec3 w = dir * dir;
-    vec3 slab = vec3(0.0, 2.0, 4.0) + step(0.0, dir);
-    gVCTFetches += 3u;
-    vec4 sx = textureLod(uSides, vec3((x + slab.x) / 6.0, tc.yz), 0.0);
-    vec4 sy = textureLod(uSides, vec3((x + slab.y) / 6.0, tc.yz), 0.0);
-    vec4 sz = textureLod(uSides, vec3((x + slab.z) / 6.0, tc.yz), 0.0);
-    float coverage = w.x * sx.a + w.y * sy.a + w.z * sz.a;
-    vec3 radiance = coverage > 1e-6 ? (w.x * sx.rgb + w.y * sy.rgb + w.z * sz.rgb) / coverage : vec3(0.0);
-    float alpha = levelRadiance(0, tc, 0.0).a;
-    return vec4(radiance * alpha, alpha);
-}
-#endif
-
 // The atlas at lod for a cone marching along dir: the slab of each axis's sign (slab index
-// 2 axis + (dir < 0)) weighted dir^2, one fetch filtered across the two mips around lod. x is kept
-// half a texel of the coarser mip read inside the slab, so the filter does not blend in the
-// neighbouring direction, and the fade to the zero border that y and z get from the sampler is
-// applied to x by hand (a point u texels inside a face keeps 0.5 + u of the face texel), blended
-// between the two mips. Exact away from the x faces; within a texel of them the finer mip is read
-// at the coarser one's clamp (reading each mip at its own clamp took two fetches per direction and
-// cost the trace 1.8x).
+// 2 axis + (dir < 0)) weighted dir^2, one fetch filtered across the two mips around lod (mip 0 is
+// level 0, so lod 0 to 1 needs no read beside the atlas). x is kept half a texel of the coarser
+// mip read inside the slab, so the filter does not blend in the neighbouring direction, and the
+// fade to the zero border that y and z get from the sampler is applied to x by hand (a point u
+// texels inside a face keeps 0.5 + u of the face texel), blended between the two mips. Exact away
+// from the x faces; within a texel of them the finer mip is read at the coarser one's clamp
+// (reading each mip at its own clamp took two fetches per direction and cost the trace 1.8x).
+// With face sides, mip 0 holds each voxel's sides facing back along the slab's direction, with
+// their coverage beside it (mip.comp), so a side no fragment faces adds nothing: the dark face of
+// a thin wall stays dark even from a grazing direction.
 vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
     vec3 w = dir * dir;
     vec3 slab = vec3(0.0, 2.0, 4.0) + step(dir, vec3(0.0));
     float f = fract(lod);
-    float size = float(uVCT.resolution / 2) * exp2(-floor(lod));  // the finer mip's texels per slab
+    float size = float(uVCT.resolution) * exp2(-floor(lod));  // the finer mip's texels per slab
     float halfTexel = (f > 0.0 ? 1.0 : 0.5) / size;
     float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
     float edge = min(tc.x, 1.0 - tc.x) * size;
@@ -135,18 +115,11 @@ vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
     vec3 c = vec3(dot(textureLod(uSHR, tc, lod), b), dot(textureLod(uSHG, tc, lod), b), dot(textureLod(uSHB, tc, lod), b));
     return vec4(max(c, vec3(0.0)), a);
 #elif VCT_ANISO
-    // One atlas sample serves both ranges: a CPU rasterizer runs both sides of a branch whose
-    // condition may differ between the invocations it executes together (masked, not skipped),
-    // so the two calls of sampleAniso this made (one per range) cost two, taken or not: the
-    // anisotropic trace took 3.3x the isotropic one's time, now 2.45x, with the same pixels.
-    // The level-0 read is counted for every sample for the same reason (4 calls a sample).
-    vec4 atlas = sampleAniso(tc, max(lod - 1.0, 0.0), dir);
-#if VCT_SIDES
-    vec4 fine = sampleSides(tc, dir);
-#else
-    vec4 fine = levelRadiance(0, tc, lod);
-#endif
-    return lod >= 1.0 ? atlas : mix(fine, atlas, lod);
+    // One atlas call per direction for every lod: a CPU rasterizer runs both sides of a branch
+    // whose condition may differ between the invocations it executes together (masked, not
+    // skipped), so a separate read for lod < 1 (level 0's own volume, or a second atlas call)
+    // costs every sample, taken or not.
+    return sampleAniso(tc, lod, dir);
 #else
     return levelRadiance(k, tc, lod);
 #endif

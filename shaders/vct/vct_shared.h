@@ -24,14 +24,13 @@ GI_CONST int kVCTAtomicTries = 256;    // cap of the running-average compare-and
 // Texture units of the trace, bounce and inject passes (above the G-buffer units 0..8).
 GI_CONST int kVCTUnitRadiance = 9;     // premultiplied radiance + opacity, with mips (one per level: 9 + level)
 GI_CONST int kVCTUnitAniso = 16;       // the six directional volumes +X -X +Y -Y +Z -Z side by side along x
-GI_CONST int kVCTUnitSides = 17;       // trace: the per-side exit radiance (six slabs along x, full resolution)
 GI_CONST int kVCTUnitSH = 22;          // R, G, B SH coefficient volumes (22..24)
 GI_CONST int kVCTUnitShadow2D = 9;     // inject: 2D shadow maps, one per light of the batch (9..12)
 GI_CONST int kVCTUnitShadowCube = 13;  // inject: cube shadow maps (13..16)
 GI_CONST int kVCTUnitSky = 25;         // trace: the environment's prefiltered cube (FrameContext::sky)
 GI_CONST int kVCTUnitMipSource = 0;    // mip: the volume read
 GI_CONST int kVCTUnitMipSourceCoverage = 1;  // mip (anisotropic): the coverage atlas read
-GI_CONST int kVCTUnitMipSides = 2;     // mip (anisotropic, first mip): level 0's sides
+GI_CONST int kVCTUnitMipSides = 2;     // mip (anisotropic, the atlas's mip 0): level 0's sides
 GI_CONST int kVCTUnitAnisoCoverage = 18;  // trace: the anisotropic atlas's facing coverage
 GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
 GI_CONST int kVCTUnitLowSpecular = 3;
@@ -120,8 +119,8 @@ struct VCTParams {
                          // mip: also the coverage atlas
     int sliceAxis;       // voxelize: 0: each triangle along its dominant axis, grown (conservative);
                          // 1, 2, 3: along x, y, z, not grown, one cell per fragment (seed 001's slicing)
-    int fromSides;       // mip (anisotropic): 1 from level 0's sides (kVCTUnitMipSides), 0 from the
-                         // source (the atlas's mip below, or the isotropic level 0)
+    int level0;          // mip (anisotropic with `sides`): 1 writes the atlas's mip 0 from level 0's
+                         // sides (kVCTUnitMipSides), 0 a mip from the atlas's mip below
     // mip
     ivec4 destSize;      // xyz: the level written, in voxels; w unused
     int sourceLevel;
