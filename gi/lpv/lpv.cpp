@@ -87,9 +87,7 @@ std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& scene
 }
 
 LPV::LPV()
-    : mRSMProg("lpv.rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}),
-      mRSMOpaqueProg("lpv.rsmOpaque", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {"ALPHA_CUT=0"}),
-      mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}),
+    : mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}),
       mGeometryProg("lpv.geometry", {{GL_COMPUTE_SHADER, "lpv/geometry.comp"}}),
       mGeometryResolveProg("lpv.geometryResolve", {{GL_COMPUTE_SHADER, "lpv/geometry_resolve.comp"}}),
       mTransmitProg("lpv.transmit", {{GL_COMPUTE_SHADER, "lpv/transmit.comp"}}),
@@ -98,16 +96,23 @@ LPV::LPV()
       mResolveProg("lpv.resolve", {{GL_COMPUTE_SHADER, "lpv/resolve.comp"}}),
       mShadeProg("lpv.shade", {{GL_COMPUTE_SHADER, "lpv/shade.comp"}}),
       mSkyProg("lpv.sky", {{GL_COMPUTE_SHADER, "lpv/sky.comp"}}),
-      mBlock(kLPVBlockName, kLPVBlockBinding) {
-    for (gl::Program* p : {&mRSMProg, &mRSMOpaqueProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
-                           &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})
+      mBlock(kLPVBlockName, kLPVBlockBinding),
+      mRSMProgs("lpv.rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {},
+                [this](gl::Program& p) { requireRSMBlocks(p); }),
+      mRSMOpaqueProgs("lpv.rsmOpaque", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {"ALPHA_CUT=0"},
+                      [this](gl::Program& p) { requireRSMBlocks(p); }) {
+    for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
+                           &mShadeProg, &mSkyProg})
         mBlock.requireIn(*p);
-    mMaterialBinding.requireIn(mRSMProg);
-    mMaterialBinding.requireIn(mRSMOpaqueProg);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
 }
 
 LPV::~LPV() = default;
+
+void LPV::requireRSMBlocks(gl::Program& p) {
+    mBlock.requireIn(p);
+    mMaterialBinding.requireIn(p);
+}
 
 size_t LPV::estimateBytes(const FrameSettings& fs) {
     const LPVSettings& s = fs.lpv;
@@ -233,13 +238,16 @@ void LPV::renderRSMs(const FrameContext& ctx) {
         // The material changes per draw: its own block (common/material_shared.h).
         mMaterialBinding.begin(0);
         // Opaque materials first, with the variant that tests depth before shading, then the rest.
-        auto bind = [&](const Material& mat, int) { mMaterialBinding.bind(ctx.scene, mat); };
+        MaterialPrograms* programs = &mRSMOpaqueProgs;
+        auto bind = [&](const Material& mat, int) {
+            programs->of(mat, fs.render.materialPrograms).use();
+            mMaterialBinding.bind(ctx.scene, mat);
+        };
         // Clusters outside the map's frustum are left out (render.cullClusters; a directional
         // light's map covers only its cascade, so the finer cascades draw a part of the scene).
         const glm::mat4* cull = fs.render.cullClusters ? &m.viewProj : nullptr;
-        mRSMOpaqueProg.use();
         ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode == AlphaMode::Opaque; }, bind, cull);
-        mRSMProg.use();
+        programs = &mRSMProgs;
         ctx.scene.drawIf([](const Material& mat) { return mat.alphaMode != AlphaMode::Opaque; }, bind, cull);
         mMaterialBinding.end();
     };
@@ -640,12 +648,14 @@ std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLight
 bool LPV::reloadShaders(std::string& log) {
     for (RSM& m : mRSMs) m.drawn = false;  // the edited shaders draw them afresh
     bool ok = true;
-    for (gl::Program* p : {&mRSMProg, &mRSMOpaqueProg, &mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg,
-                           &mBounceProg, &mResolveProg, &mShadeProg, &mSkyProg})
+    for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
+                           &mShadeProg, &mSkyProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";
         }
+    for (MaterialPrograms* p : {&mRSMProgs, &mRSMOpaqueProgs})
+        if (!p->reload(log)) ok = false;
     return ok;
 }
 

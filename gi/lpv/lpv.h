@@ -98,6 +98,7 @@
 #include "gi/gl/shader.h"
 #include "gi/gl/uniform_block.h"
 #include "gi/render/material_binding.h"
+#include "gi/render/material_programs.h"
 #include "gi/render/pass.h"
 #include "lpv/lpv_shared.h"
 
@@ -164,7 +165,7 @@ private:
         gl::Texture shR, shG, shB, geometryRSMVolume, geometryGBufferVolume;
     };
 
-    gl::Program mRSMProg, mRSMOpaqueProg, mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
+    gl::Program mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
         mResolveProg, mShadeProg, mSkyProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
     // propagate's views of its grids (propagateStep), which bounce and resolve re-point too
@@ -173,6 +174,10 @@ private:
                       mGeometryRSMView = gl::createBufferTexture(), mGeometryGBufferView = gl::createBufferTexture(),
                       mAlbedoView = gl::createBufferTexture();
     MaterialBinding mMaterialBinding;  // the RSM pass reads it
+    // The RSM pass's programs, one per set of material textures (gi/render/material_programs.h),
+    // for Opaque materials (no discard) and for the rest.
+    MaterialPrograms mRSMProgs, mRSMOpaqueProgs;
+    void requireRSMBlocks(gl::Program& p);  // the LPV block and the material block
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;
     std::vector<RSM> mRSMs;

@@ -15,8 +15,8 @@ shared::MaterialParams materialParams(const Material& m) {
         const TextureTransform& t = m.uvTransform[s];
         p.uvTransform[2 * s] = glm::vec4(t.row(0), float(t.texCoord));
         p.uvTransform[2 * s + 1] = glm::vec4(t.row(1), 0.0f);
-        if (m.texture(s) >= 0) p.textureMask |= 1 << s;
     }
+    p.textureMask = materialTextureMask(m);
     p.alphaCutoff = m.alphaCutoff;
     p.alphaMode = m.alphaMode == AlphaMode::Mask ? shared::kAlphaMask : m.alphaMode == AlphaMode::Blend ? shared::kAlphaBlend : shared::kAlphaOpaque;
     p.roughness = m.roughness;
@@ -25,6 +25,13 @@ shared::MaterialParams materialParams(const Material& m) {
     p.occlusionStrength = m.occlusionStrength;
     p.doubleSided = m.doubleSided ? 1 : 0;
     return p;
+}
+
+int materialTextureMask(const Material& m) {
+    int mask = 0;
+    for (int s = 0; s < kSlotCount; ++s)
+        if (m.texture(s) >= 0) mask |= 1 << s;
+    return mask;
 }
 
 MaterialBinding::MaterialBinding() : mBlock(shared::kMaterialBlockName, GLuint(shared::kMaterialBlockBinding)) {}

@@ -12,6 +12,8 @@ namespace gi {
 
 // The block's contents for a material.
 shared::MaterialParams materialParams(const Material& m);
+// The material's texture slots as MaterialParams::textureMask has them (bit s: slot s).
+int materialTextureMask(const Material& m);
 
 class MaterialBinding {
 public:

@@ -29,6 +29,7 @@ struct RenderSettings {
     float timeBudgetSeconds = 600.0f;         // refuse work (environment prefilter, reference) estimated to take longer, s
     bool keepStaticWork = true;               // keep shadow maps, RSMs and VCT's lit volumes while nothing they depend on changes
     bool cullClusters = true;                 // the G-buffer and shadow passes skip triangle clusters outside the view (same pixels)
+    bool materialPrograms = true;             // one program per set of material textures (same pixels; material_programs.h)
 
     template <class V>
     void visit(V&& v) {
@@ -47,6 +48,10 @@ struct RenderSettings {
                                        "The G-buffer and shadow passes leave out clusters of 256 triangles that lie wholly outside the camera's or the "
                                        "light's frustum (the pixels are the same; stats.json counts the triangles drawn)",
                                        ""}));
+        v(materialPrograms, forDevelopers({"materialPrograms",
+                                           "The G-buffer and LPV's RSMs draw each material with a program built for the textures it has "
+                                           "(off: one program that tests every texture slot at run time; the pixels are the same)",
+                                           ""}));
     }
 
     size_t memoryBudgetBytes() const { return size_t(double(memoryBudgetMB) * 1024.0 * 1024.0); }

@@ -52,11 +52,13 @@ constexpr size_t kTargetBytesPerPixel = 8 + 8 + 8 + 4;        // indirect, indir
 
 }  // namespace
 
+void Renderer::requireRenderBlocks(gl::Program& p) {
+    mBlock.requireIn(p);
+    mMaterialBinding.requireIn(p);
+}
+
 Renderer::Renderer()
     : mDepthProg("depthPrepass", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/depth.frag"}}),
-      mGBufferProg("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}),
-      mGBufferOpaqueProg("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
-                         {"ALPHA_CUT=0"}),
       mShadowProg("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
                   {"LINEAR_DEPTH=0"}),
       mShadowOpaqueProg("shadowOpaque", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
@@ -67,12 +69,14 @@ Renderer::Renderer()
       mLightProg(gl::fullscreenProgram("light", "render/light.frag")),
       mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
-      mBlock(kRenderBlockName, kRenderBlockBinding) {
-    for (gl::Program* p : {&mGBufferProg, &mGBufferOpaqueProg, &mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg,
-                            &mLightProg, &mToneProg, &mViewProg})
+      mBlock(kRenderBlockName, kRenderBlockBinding),
+      mGBufferProgs("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}, {},
+                    [this](gl::Program& p) { requireRenderBlocks(p); }),
+      mGBufferOpaqueProgs("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
+                          {"ALPHA_CUT=0"}, [this](gl::Program& p) { requireRenderBlocks(p); }) {
+    for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
-    for (gl::Program* p : {&mGBufferProg, &mGBufferOpaqueProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg})
-        mMaterialBinding.requireIn(*p);
+    for (gl::Program* p : {&mShadowProg, &mShadowOpaqueProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
     for (const PassInfo& info : passRegistry())
         if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
@@ -298,7 +302,7 @@ void Renderer::render(const FrameSettings& fs) {
         if (fs.lights[i].castShadows)
             mShadowViews[i] = {mShadows[i].depth.id(), light::cubeShadow(int(fs.lights[i].type)), mLightBuffer[i].shadowViewProj,
                                mLightBuffer[i].shadow.x};
-    renderGBuffer(viewProj, fs.render.cullClusters);
+    renderGBuffer(viewProj, fs.render);
     const glm::vec4 zero(0.0f);
     glClearTexImage(mIndirectSpecular.id(), 0, GL_RGBA, GL_FLOAT, &zero[0]);
     runStage(ctx, [](Pass& p, FrameContext& c) { p.indirect(c); });
@@ -383,8 +387,8 @@ void Renderer::renderShadows(const FrameSettings& fs, uint64_t key) {
     mShadowDrawn = mScene->resetDrawn();
 }
 
-void Renderer::renderGBuffer(const glm::mat4& viewProj, bool cullClusters) {
-    const glm::mat4* cull = cullClusters ? &viewProj : nullptr;
+void Renderer::renderGBuffer(const glm::mat4& viewProj, const RenderSettings& settings) {
+    const glm::mat4* cull = settings.cullClusters ? &viewProj : nullptr;
     auto pass = mTimer.scope("gbuffer");
     glBindFramebuffer(GL_FRAMEBUFFER, mGBufferFBO.id());
     glViewport(0, 0, mWidth, mHeight);
@@ -406,7 +410,9 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj, bool cullClusters) {
     mMaterialBinding.begin(mMaterialSampler.id());
     // Per draw: the draw's first triangle (to find each triangle's emitter) and the material.
     // Opaque materials first, with the program that tests depth before shading (gbuffer.frag).
+    MaterialPrograms* programs = &mGBufferOpaqueProgs;
     auto bind = [&](const Material& m, int, int firstTriangle) {
+        programs->of(m, settings.materialPrograms).use();
         params.firstTriangle = firstTriangle;
         mBlock.set(params);
         mMaterialBinding.bind(*mScene, m);
@@ -426,12 +432,11 @@ void Renderer::renderGBuffer(const glm::mat4& viewProj, bool cullClusters) {
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 0, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-    mGBufferOpaqueProg.use();
     mScene->drawIf(opaque, bind, cull);
     glDisable(GL_STENCIL_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    mGBufferProg.use();
+    programs = &mGBufferProgs;
     mScene->drawIf([](const Material& m) { return m.alphaMode != AlphaMode::Opaque; }, bind, cull);
     mMaterialBinding.end();
     mGBufferDrawn = mScene->resetDrawn();
@@ -524,13 +529,14 @@ bool Renderer::reloadShaders(std::string& log) {
     log.clear();
     for (ActivePass& p : mPasses)
         if (!p.pass->reloadShaders(log)) ok = false;
-    for (gl::Program* p : {&mGBufferProg, &mGBufferOpaqueProg, &mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg,
-                            &mLightProg, &mToneProg, &mViewProg}) {
+    for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";
         }
     }
+    for (MaterialPrograms* p : {&mGBufferProgs, &mGBufferOpaqueProgs})
+        if (!p->reload(log)) ok = false;
     return ok;
 }
 

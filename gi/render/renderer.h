@@ -20,6 +20,7 @@
 #include "gi/render/gpu_scene.h"
 #include "gi/render/lights.h"
 #include "gi/render/material_binding.h"
+#include "gi/render/material_programs.h"
 #include "gi/render/pass.h"
 #include "gi/render/render_settings.h"
 #include "gi/scene/camera.h"
@@ -123,14 +124,17 @@ private:
         LightType type = LightType::Directional;
     };
 
+    void requireRenderBlocks(gl::Program& p);  // the render block and the material block
+
     std::unique_ptr<GPUScene> mScene;
     GPUScene::Drawn mShadowDrawn, mGBufferDrawn;  // the last frame's work (passStats)
     // The G-buffer and directional shadow programs come in two variants: for Opaque materials
     // without discard (early depth testing), and for Mask and Blend ones (their draws go last).
-    gl::Program mDepthProg, mGBufferProg, mGBufferOpaqueProg, mShadowProg, mShadowOpaqueProg, mShadowPointProg, mCompositeProg, mLightProg,
-        mToneProg, mViewProg;
-    gl::UniformBlock<shared::RenderParams> mBlock;  // every program above reads it
+    gl::Program mDepthProg, mShadowProg, mShadowOpaqueProg, mShadowPointProg, mCompositeProg, mLightProg, mToneProg, mViewProg;
+    gl::UniformBlock<shared::RenderParams> mBlock;  // every program above and below reads it
     MaterialBinding mMaterialBinding;  // the G-buffer and shadow programs read it
+    // The G-buffer's, one program per set of material textures (material_programs.h).
+    MaterialPrograms mGBufferProgs, mGBufferOpaqueProgs;
     gl::VertexArray mEmptyVAO;
     gl::Sampler mLinearSampler, mShadowSampler, mPointSampler, mMaterialSampler, mLUTSampler;
     gl::Sampler mMipPointSampler;  // views of one mip (cube maps): nearest texels of the chosen level
@@ -170,7 +174,7 @@ private:
     void resize(int width, int height);
     void prepareShadows(const FrameSettings& fs);
     void renderShadows(const FrameSettings& fs, uint64_t key);
-    void renderGBuffer(const glm::mat4& viewProj, bool cullClusters);
+    void renderGBuffer(const glm::mat4& viewProj, const RenderSettings& settings);
     void renderLighting(const FrameSettings& fs, const glm::mat4& viewProj, const FrameContext& ctx);
     void renderToneMap(const FrameSettings& fs);
 };

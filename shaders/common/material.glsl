@@ -44,7 +44,13 @@ vec4 sampleMaterial(sampler2D tex, vec2 uv) {
     return sum / n;
 }
 
-bool materialHas(int slot) { return (uMaterialParams.textureMask & (1 << slot)) != 0; }
+// MATERIAL_TEXTURES: the texture slots a program is built for (gi/render/material_programs.h);
+// slots outside it are left out at compile time, since a CPU rasterizer executes a branch that
+// no invocation takes (masked) and paid for every absent texture's read.
+#ifndef MATERIAL_TEXTURES
+#define MATERIAL_TEXTURES 31  // the general program: every slot tested at run time
+#endif
+bool materialHas(int slot) { return (MATERIAL_TEXTURES & (1 << slot)) != 0 && (uMaterialParams.textureMask & (1 << slot)) != 0; }
 
 // A slot's texture coordinates: its set (TEXCOORD_0 or _1) through KHR_texture_transform.
 vec2 materialUV(int slot, vec2 uv0, vec2 uv1) {
