@@ -492,8 +492,8 @@ TEST_F(Materials, EveryTechniqueDrawsEveryMap) {
     }
 }
 
-// render.materialPrograms: the G-buffer and LPV's RSMs draw each material with a program built
-// for its texture slots (gi/render/material_programs.h), which must draw the pixels of the
+// render.materialPrograms: the G-buffer, LPV's RSMs and VCT's voxelization draw each material with
+// a program built for its texture slots (gi/render/material_programs.h), which must draw the pixels of the
 // general program that tests the slots at run time, for materials with a few maps and with all.
 TEST_F(Materials, ProgramsBuiltPerTextureSetDrawTheSamePixels) {
     fs::path dir = test::tempDir();
@@ -520,10 +520,11 @@ TEST_F(Materials, ProgramsBuiltPerTextureSetDrawTheSamePixels) {
     int index = 0;
     for (const auto& [label, material] : materials) {
         Scene scene = loadGLTF(writePlane(dir, "m" + std::to_string(index++), material, {"c.png", "n.png"}));
-        for (const char* technique : {"none", "lpv"}) {
+        for (const char* technique : {"none", "lpv", "vct"}) {
             Preset p;
             p.header.technique.name = technique;
             p.lpv.gridResolution = 16;
+            p.vct.gridResolution = 32;
             FrameSettings fs = frameSettings(p, scene, 64, 64);
             fs.camera.eye = kEye;
             fs.camera.target = glm::vec3(0.0f);
@@ -550,12 +551,16 @@ TEST_F(Materials, ProgramsBuiltPerTextureSetDrawTheSamePixels) {
                 worst = std::max(worst, std::abs(double(specialised[i]) - general[i]) / std::max(std::abs(double(general[i])), 1e-3));
             }
             EXPECT_GT(sum, 0.0) << label << ", " << technique;
+            std::printf("%s, %s: largest relative difference %.2e\n", label, technique, worst);
             // Exact without GI; LPV's injection sums floats with atomics in thread order, so
-            // its frame may differ by one step of fp16 (gl_test.cpp, cluster culling).
-            if (std::string(technique) == "none")
+            // its frame may differ by one step of fp16 (gl_test.cpp, cluster culling), and VCT's
+            // voxelization keeps RGBA8 running averages in thread order, a step of 8 bits in
+            // the voxels (each pair of frames here was identical in two runs).
+            const std::string t = technique;
+            if (t == "none")
                 EXPECT_EQ(specialised, general) << label;
             else
-                EXPECT_LE(worst, 1.0 / 1024.0) << label << ", " << technique;
+                EXPECT_LE(worst, t == "lpv" ? 1.0 / 1024.0 : 1.0 / 100.0) << label << ", " << technique;
         }
     }
 }

@@ -49,7 +49,7 @@ struct RenderSettings {
                                        "light's frustum (the pixels are the same; stats.json counts the triangles drawn)",
                                        ""}));
         v(materialPrograms, forDevelopers({"materialPrograms",
-                                           "The G-buffer and LPV's RSMs draw each material with a program built for the textures it has "
+                                           "The G-buffer, LPV's RSMs and the voxelization of VCT and diffusion draw each material with a program built for the textures it has "
                                            "(off: one program that tests every texture slot at run time; the pixels are the same)",
                                            ""}));
     }

@@ -9,14 +9,18 @@
 namespace gi {
 
 SurfaceVoxelizer::SurfaceVoxelizer()
-    : mVoxelizeProg("vct.voxelize", {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
-                                     {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
-                                     {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}}),
-      mClearProg("vct.clear", {{GL_COMPUTE_SHADER, "vct/clear.comp"}}),
+    : mClearProg("vct.clear", {{GL_COMPUTE_SHADER, "vct/clear.comp"}}),
       mInjectProg("vct.inject", {{GL_COMPUTE_SHADER, "vct/inject.comp"}}),
-      mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
-    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg}) mBlock.requireIn(*p);
-    mMaterialBinding.requireIn(mVoxelizeProg);
+      mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding),
+      mVoxelizePrograms("vct.voxelize",
+                        {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
+                         {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
+                         {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}},
+                        {}, [this](gl::Program& p) {
+                            mBlock.requireIn(p);
+                            mMaterialBinding.requireIn(p);
+                        }) {
+    for (gl::Program* p : {&mClearProg, &mInjectProg}) mBlock.requireIn(*p);
     mEmptyFBO = gl::createFramebuffer();
     mRepeat = gl::createSampler({GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT});
     mShadowSampler = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
@@ -50,14 +54,16 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    mVoxelizeProg.use();
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     mMaterialBinding.begin(mRepeat.id());
     for (int axis = slicing ? 1 : 0; axis <= (slicing ? 3 : 0); ++axis) {
         p.sliceAxis = axis;
         mBlock.set(p);
-        ctx.scene.draw([&](const Material& m, int) { mMaterialBinding.bind(ctx.scene, m); });
+        ctx.scene.draw([&](const Material& m, int) {
+            mVoxelizePrograms.of(m, ctx.settings.render.materialPrograms).use();
+            mMaterialBinding.bind(ctx.scene, m);
+        });
     }
     mMaterialBinding.end();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -101,11 +107,12 @@ void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& gri
 
 bool SurfaceVoxelizer::reloadShaders(std::string& log) {
     bool ok = true;
-    for (gl::Program* p : {&mVoxelizeProg, &mClearProg, &mInjectProg})
+    for (gl::Program* p : {&mClearProg, &mInjectProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";
         }
+    if (!mVoxelizePrograms.reload(log)) ok = false;
     return ok;
 }
 

@@ -16,6 +16,7 @@
 #include "gi/gl/shader.h"
 #include "gi/gl/uniform_block.h"
 #include "gi/render/material_binding.h"
+#include "gi/render/material_programs.h"
 #include "gi/render/pass.h"
 #include "vct/vct_shared.h"
 
@@ -49,9 +50,10 @@ public:
     int voxelizationCount() const { return mVoxelizationCount; }
 
 private:
-    gl::Program mVoxelizeProg, mClearProg, mInjectProg;
+    gl::Program mClearProg, mInjectProg;
     gl::UniformBlock<vct::VCTParams> mBlock;
     MaterialBinding mMaterialBinding;
+    MaterialPrograms mVoxelizePrograms;  // one per set of material textures (gi/render/material_programs.h)
     gl::Framebuffer mEmptyFBO;
     gl::Sampler mRepeat, mShadowSampler;
     int mFramebufferSize = 0;
