@@ -66,7 +66,9 @@ Renderer::Renderer()
       mShadowPointProg("shadowPoint", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
                        {"LINEAR_DEPTH=1"}),
       mCompositeProg(gl::fullscreenProgram("composite", "render/composite.frag")),
-      mLightProg(gl::fullscreenProgram("light", "render/light.frag")),
+      mLightProgs{gl::fullscreenProgram("light2D", "render/light.frag", {"LIGHT_KIND=0"}),
+                  gl::fullscreenProgram("lightPoint", "render/light.frag", {"LIGHT_KIND=1"}),
+                  gl::fullscreenProgram("lightArea", "render/light.frag", {"LIGHT_KIND=2"})},
       mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
       mBlock(kRenderBlockName, kRenderBlockBinding),
@@ -74,7 +76,7 @@ Renderer::Renderer()
                     [this](gl::Program& p) { requireRenderBlocks(p); }),
       mGBufferOpaqueProgs("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
                           {"ALPHA_CUT=0"}, [this](gl::Program& p) { requireRenderBlocks(p); }) {
-    for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg})
+    for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProgs[0], &mLightProgs[1], &mLightProgs[2], &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
     for (gl::Program* p : {&mShadowProg, &mShadowOpaqueProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
@@ -475,7 +477,6 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
 
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    mLightProg.use();
     params.specular = fs.render.specular ? 1 : 0;
     params.pcfRadius = fs.render.pcfRadius;
     params.shadowBias = fs.render.shadowBias;
@@ -493,6 +494,7 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
         params.lightIndex = int(i);
         mBlock.set(params);
         const bool cube = light::cubeShadow(int(l.type));
+        mLightProgs[l.type == LightType::Area ? 2 : cube ? 1 : 0].use();
         if (l.castShadows) glBindTextureUnit(cube ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
         // The area lights' soft shadows search the same map's distances for blockers.
         if (l.castShadows && cube) glBindTextureUnit(kUnitShadowCubeDepth, sm.depth.id());
@@ -529,7 +531,7 @@ bool Renderer::reloadShaders(std::string& log) {
     log.clear();
     for (ActivePass& p : mPasses)
         if (!p.pass->reloadShaders(log)) ok = false;
-    for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProg, &mToneProg, &mViewProg}) {
+    for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProgs[0], &mLightProgs[1], &mLightProgs[2], &mToneProg, &mViewProg}) {
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

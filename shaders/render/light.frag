@@ -3,6 +3,14 @@
 // of their triangles and soft shadows. Shadows: directional and spot lights use a 2D depth map, point lights a cube
 // map of distance / far; both are filtered with a grid of hardware-compared taps (PCF) and offset
 // along the normal by the bias (in shadow-map texels, so the bias follows the map's resolution).
+// LIGHT_KIND: the kind of light the program is built for (gi/render/renderer.cpp draws each light
+// with its own): 0 directional or spot (2D shadow map), 1 point (cube map), 2 area; -1 any, chosen
+// at run time. A CPU rasterizer runs every side of a branch, masked, even where no invocation
+// takes it, so one program for every kind paid each light the area light's soft shadow and both
+// PCF filters.
+#ifndef LIGHT_KIND
+#define LIGHT_KIND -1
+#endif
 #include "render/gbuffer_common.glsl"
 #include "common/brdf.glsl"
 #include "common/light.h"
@@ -152,6 +160,7 @@ void main() {
     if (!readSurface(px, vUV, s)) discard;
 
     GPULight l = uLights[uRender.lightIndex];
+#if LIGHT_KIND < 0 || LIGHT_KIND == 2
     if (l.info.x == kLightArea) {
         vec3 L;
         float dist;
@@ -161,6 +170,8 @@ void main() {
         oColor = vec4(c * vis, 1.0);
         return;
     }
+#endif
+#if LIGHT_KIND != 2
     // Normalised once more, as this pass always did: the GPU's normalize rounds unlike the CPU's,
     // and leaving it out would move pixels.
     vec3 axis = normalize(l.direction.xyz);
@@ -178,6 +189,13 @@ void main() {
     vec3 f = evalBRDFCos(s.N, s.V, L, s.baseColor, s.metallic, s.roughness, uRender.specular != 0);
     if (all(equal(f, vec3(0.0))) || all(equal(E, vec3(0.0)))) discard;
     float vis = 1.0;
+#if LIGHT_KIND == 0
+    if (l.info.y != 0) vis = shadow2D(l, s.P, s.N, L, dist);
+#elif LIGHT_KIND == 1
+    if (l.info.y != 0) vis = shadowCube(l, s.P, s.N, L, dist);
+#else
     if (l.info.y != 0) vis = cubeShadow(l.info.x) ? shadowCube(l, s.P, s.N, L, dist) : shadow2D(l, s.P, s.N, L, dist);
+#endif
     oColor = vec4(f * E * vis, 1.0);
+#endif
 }
