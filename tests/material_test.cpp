@@ -149,6 +149,19 @@ json lambert(float albedo) {
 
 uint8_t unorm(float x) { return uint8_t(std::lround((x * 0.5f + 0.5f) * 255.0f)); }
 
+// A 64x64 frame of a plane scene from kEye under one light, with small LPV and VCT grids.
+FrameSettings planeFrame(const Scene& scene, const char* technique, const LightSettings& light) {
+    Preset p;
+    p.header.technique.name = technique;
+    p.vct.gridResolution = 32;
+    p.lpv.gridResolution = 16;
+    FrameSettings fs = frameSettings(p, scene, 64, 64);
+    fs.camera.eye = kEye;
+    fs.camera.target = glm::vec3(0.0f);
+    fs.lights = {light};
+    return fs;
+}
+
 class Materials : public test::GLTest {};
 
 // (1) A flat plane whose normal map holds one tilted normal is lit like the plane tilted alike:
@@ -468,17 +481,10 @@ TEST_F(Materials, EveryTechniqueDrawsEveryMap) {
     Scene scene = loadGLTF(writePlane(dir, "all", m, {"c.png", "n.png"}));
     EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
     for (const char* technique : {"none", "lpv", "vct"}) {
-        Preset p;
-        p.header.technique.name = technique;
-        p.vct.gridResolution = 32;
-        p.lpv.gridResolution = 16;
-        FrameSettings fs = frameSettings(p, scene, 64, 64);
-        fs.camera.eye = kEye;
-        fs.camera.target = glm::vec3(0.0f);
         LightSettings sun;
         sun.type = LightType::Directional;
         sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, 0.2f));
-        fs.lights = {sun};
+        FrameSettings fs = planeFrame(scene, technique, sun);
         Renderer r;
         r.setScene(scene);
         r.render(fs);
@@ -521,20 +527,13 @@ TEST_F(Materials, ProgramsBuiltPerTextureSetDrawTheSamePixels) {
     for (const auto& [label, material] : materials) {
         Scene scene = loadGLTF(writePlane(dir, "m" + std::to_string(index++), material, {"c.png", "n.png"}));
         for (const char* technique : {"none", "lpv", "vct"}) {
-            Preset p;
-            p.header.technique.name = technique;
-            p.lpv.gridResolution = 16;
-            p.vct.gridResolution = 32;
-            FrameSettings fs = frameSettings(p, scene, 64, 64);
-            fs.camera.eye = kEye;
-            fs.camera.target = glm::vec3(0.0f);
             LightSettings spot;
             spot.type = LightType::Spot;
             spot.position = {1.0f, 4.0f, 1.0f};
             spot.direction = glm::vec3(0.0f, -1.0f, 0.0f);
             spot.outerConeDeg = 60.0f;
             spot.intensity = 20.0f;
-            fs.lights = {spot};
+            FrameSettings fs = planeFrame(scene, technique, spot);
             auto frame = [&](bool specialise) {
                 FrameSettings f = fs;
                 f.render.materialPrograms = specialise;
