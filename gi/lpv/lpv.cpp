@@ -98,9 +98,9 @@ LPV::LPV()
       mSkyProg("lpv.sky", {{GL_COMPUTE_SHADER, "lpv/sky.comp"}}),
       mBlock(kLPVBlockName, kLPVBlockBinding),
       mRSMProgs("lpv.rsm", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {},
-                [this](gl::Program& p) { requireRSMBlocks(p); }),
+                mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }),
       mRSMOpaqueProgs("lpv.rsmOpaque", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {"ALPHA_CUT=0"},
-                      [this](gl::Program& p) { requireRSMBlocks(p); }) {
+                      mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }) {
     for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
                            &mShadeProg, &mSkyProg})
         mBlock.requireIn(*p);
@@ -108,11 +108,6 @@ LPV::LPV()
 }
 
 LPV::~LPV() = default;
-
-void LPV::requireRSMBlocks(gl::Program& p) {
-    mBlock.requireIn(p);
-    mMaterialBinding.requireIn(p);
-}
 
 size_t LPV::estimateBytes(const FrameSettings& fs) {
     const LPVSettings& s = fs.lpv;

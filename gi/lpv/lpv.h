@@ -177,7 +177,6 @@ private:
     // The RSM pass's programs, one per set of material textures (gi/render/material_programs.h),
     // for Opaque materials (no discard) and for the rest.
     MaterialPrograms mRSMProgs, mRSMOpaqueProgs;
-    void requireRSMBlocks(gl::Program& p);  // the LPV block and the material block
     std::vector<Cascade> mCascadeData;
     std::vector<CascadeBox> mBoxes;
     std::vector<RSM> mRSMs;

@@ -5,13 +5,19 @@
 namespace gi {
 
 MaterialPrograms::MaterialPrograms(std::string name, std::vector<gl::StageSource> stages, std::vector<std::string> defines,
-                                   std::function<void(gl::Program&)> prepare)
+                                   const MaterialBinding& binding, std::function<void(gl::Program&)> requireBlocks)
     : mName(std::move(name)),
       mStages(std::move(stages)),
       mDefines(std::move(defines)),
-      mPrepare(std::move(prepare)),
+      mBinding(binding),
+      mRequireBlocks(std::move(requireBlocks)),
       mGeneral(mName, mStages, mDefines) {
-    mPrepare(mGeneral);
+    prepare(mGeneral);
+}
+
+void MaterialPrograms::prepare(gl::Program& p) const {
+    mBinding.requireIn(p);
+    mRequireBlocks(p);
 }
 
 const gl::Program& MaterialPrograms::of(const Material& m, bool specialise) {
@@ -24,7 +30,7 @@ const gl::Program& MaterialPrograms::of(const Material& m, bool specialise) {
             std::vector<std::string> defines = mDefines;
             defines.push_back("MATERIAL_TEXTURES=" + std::to_string(mask));
             p = std::make_unique<gl::Program>(mName + "[textures " + std::to_string(mask) + "]", mStages, defines);
-            mPrepare(*p);
+            prepare(*p);
         } catch (const Error&) {
             p.reset();  // the general program draws it
         }

@@ -4,10 +4,10 @@
 // Why: a CPU rasterizer runs both sides of a branch, masked, even where the condition is the
 // same for every invocation, so the general program (which tests the material's textureMask at
 // run time) read all five material textures for every fragment, present or not. Used by the
-// G-buffer, LPV's RSMs and the surface voxelizer (VCT, diffusion). Sponza's
-// materials have a base colour texture only; its G-buffer at 800x600 on llvmpipe took 207 ms
-// with the general program and 147 ms with the variant (three alternating rounds). A variant
-// leaves out only the reads the run-time test would skip, so the pixels are the same.
+// G-buffer, LPV's RSMs and the surface voxelizer (VCT, diffusion). Sponza's materials have a base
+// colour texture only; its G-buffer at 800x600 on llvmpipe took 187 ms before and 136 ms with the
+// variants (technique none, three alternating rounds of the two binaries). A variant leaves out
+// only the reads the run-time test would skip, so the pixels are the same.
 #pragma once
 
 #include "gi/gl/shader.h"
@@ -23,12 +23,11 @@ namespace gi {
 
 class MaterialPrograms {
 public:
-    // `prepare` runs on every program built (e.g. uniform block requirements).
+    // Every program built must declare `binding`'s material block, and what `requireBlocks`
+    // requires of it (the pass's own uniform block). `binding` must outlive this.
     MaterialPrograms(std::string name, std::vector<gl::StageSource> stages, std::vector<std::string> defines,
-                     std::function<void(gl::Program&)> prepare);
+                     const MaterialBinding& binding, std::function<void(gl::Program&)> requireBlocks);
 
-    // The general program: every texture slot tested at run time.
-    gl::Program& general() { return mGeneral; }
     // The program for this material's texture slots. A variant that does not build (its shader
     // edited on disk into an error since the last reload) falls back to the general program,
     // which draws the same pixels; reload() tries again.
@@ -37,14 +36,16 @@ public:
     // Rebuilds the general program from disk, keeping the last good one on failure (the log says
     // why); on success the variants are dropped, to be built again from the new source.
     bool reload(std::string& log);
-    size_t variantCount() const { return mVariants.size(); }
 
 private:
+    void prepare(gl::Program& p) const;  // the block requirements
+
     std::string mName;
     std::vector<gl::StageSource> mStages;
     std::vector<std::string> mDefines;
-    std::function<void(gl::Program&)> mPrepare;
-    gl::Program mGeneral;
+    const MaterialBinding& mBinding;
+    std::function<void(gl::Program&)> mRequireBlocks;
+    gl::Program mGeneral;  // every texture slot tested at run time
     std::map<int, std::unique_ptr<gl::Program>> mVariants;  // by texture mask; null: did not build
 };
 

@@ -50,12 +50,14 @@ constexpr uint8_t kEverything = 0xff;
 constexpr size_t kGBufferBytesPerPixel = 4 + 8 + 4 + 8 + 4;  // albedo, normal, material, emissive, depth
 constexpr size_t kTargetBytesPerPixel = 8 + 8 + 8 + 4;        // indirect, indirect specular, HDR, LDR
 
-}  // namespace
-
-void Renderer::requireRenderBlocks(gl::Program& p) {
-    mBlock.requireIn(p);
-    mMaterialBinding.requireIn(p);
+// The light pass's program for a light (LIGHT_KIND in render/light.frag): 0 a 2D shadow map
+// (directional, spot), 1 a cube map (point), 2 an area light.
+int lightProgram(LightType type) {
+    if (type == LightType::Area) return 2;
+    return light::cubeShadow(int(type)) ? 1 : 0;
 }
+
+}  // namespace
 
 Renderer::Renderer()
     : mDepthProg("depthPrepass", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/depth.frag"}}),
@@ -73,9 +75,9 @@ Renderer::Renderer()
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
       mBlock(kRenderBlockName, kRenderBlockBinding),
       mGBufferProgs("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}, {},
-                    [this](gl::Program& p) { requireRenderBlocks(p); }),
+                    mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }),
       mGBufferOpaqueProgs("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
-                          {"ALPHA_CUT=0"}, [this](gl::Program& p) { requireRenderBlocks(p); }) {
+                          {"ALPHA_CUT=0"}, mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }) {
     for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProgs[0], &mLightProgs[1], &mLightProgs[2], &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
     for (gl::Program* p : {&mShadowProg, &mShadowOpaqueProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
@@ -494,7 +496,7 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
         params.lightIndex = int(i);
         mBlock.set(params);
         const bool cube = light::cubeShadow(int(l.type));
-        mLightProgs[l.type == LightType::Area ? 2 : cube ? 1 : 0].use();
+        mLightProgs[lightProgram(l.type)].use();
         if (l.castShadows) glBindTextureUnit(cube ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());
         // The area lights' soft shadows search the same map's distances for blockers.
         if (l.castShadows && cube) glBindTextureUnit(kUnitShadowCubeDepth, sm.depth.id());

@@ -124,15 +124,12 @@ private:
         LightType type = LightType::Directional;
     };
 
-    void requireRenderBlocks(gl::Program& p);  // the render block and the material block
-
     std::unique_ptr<GPUScene> mScene;
     GPUScene::Drawn mShadowDrawn, mGBufferDrawn;  // the last frame's work (passStats)
     // The G-buffer and directional shadow programs come in two variants: for Opaque materials
     // without discard (early depth testing), and for Mask and Blend ones (their draws go last).
     gl::Program mDepthProg, mShadowProg, mShadowOpaqueProg, mShadowPointProg, mCompositeProg, mToneProg, mViewProg;
-    // The light pass's, one per kind of light (LIGHT_KIND in render/light.frag): directional or
-    // spot, point, area.
+    // The light pass's, one per kind of light (lightProgram() in renderer.cpp).
     gl::Program mLightProgs[3];
     gl::UniformBlock<shared::RenderParams> mBlock;  // every program above and below reads it
     MaterialBinding mMaterialBinding;  // the G-buffer and shadow programs read it

@@ -16,10 +16,7 @@ SurfaceVoxelizer::SurfaceVoxelizer()
                         {{GL_VERTEX_SHADER, "vct/voxelize.vert"},
                          {GL_GEOMETRY_SHADER, "vct/voxelize.geom"},
                          {GL_FRAGMENT_SHADER, "vct/voxelize.frag"}},
-                        {}, [this](gl::Program& p) {
-                            mBlock.requireIn(p);
-                            mMaterialBinding.requireIn(p);
-                        }) {
+                        {}, mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }) {
     for (gl::Program* p : {&mClearProg, &mInjectProg}) mBlock.requireIn(*p);
     mEmptyFBO = gl::createFramebuffer();
     mRepeat = gl::createSampler({GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT});

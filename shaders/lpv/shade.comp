@@ -72,7 +72,8 @@ void main() {
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
         // The cascade first, then its lookups: a CPU rasterizer runs a loop until every
         // invocation it executes together has left it, and the lookups inside a loop over the
-        // cascades ran (masked) once per cascade tried. Sponza 800x600, 3 cascades: 232 -> 104 ms.
+        // cascades ran (masked) once per cascade tried. Sponza 800x600, 3 cascades of 32^3, steady
+        // state, three alternating rounds of the two binaries: 116 -> 63 ms, the same pixels.
         int k = 0;
         while (k + 1 < uLPV.cascadeCount && !inside(k, p)) ++k;
         if (inside(k, p)) {

@@ -4,12 +4,11 @@
 // map of distance / far; both are filtered with a grid of hardware-compared taps (PCF) and offset
 // along the normal by the bias (in shadow-map texels, so the bias follows the map's resolution).
 // LIGHT_KIND: the kind of light the program is built for (gi/render/renderer.cpp draws each light
-// with its own): 0 directional or spot (2D shadow map), 1 point (cube map), 2 area; -1 any, chosen
-// at run time. A CPU rasterizer runs every side of a branch, masked, even where no invocation
-// takes it, so one program for every kind paid each light the area light's soft shadow and both
-// PCF filters.
+// with its own): 0 directional or spot (2D shadow map), 1 point (cube map), 2 area. A CPU
+// rasterizer runs every side of a branch, masked, even where no invocation takes it, so one
+// program for every kind paid each light the area light's soft shadow and both PCF filters.
 #ifndef LIGHT_KIND
-#define LIGHT_KIND -1
+#error "LIGHT_KIND: 0 (2D shadow map), 1 (cube map) or 2 (area light), as gi/render/renderer.cpp builds it"
 #endif
 #include "render/gbuffer_common.glsl"
 #include "common/brdf.glsl"
@@ -160,7 +159,7 @@ void main() {
     if (!readSurface(px, vUV, s)) discard;
 
     GPULight l = uLights[uRender.lightIndex];
-#if LIGHT_KIND < 0 || LIGHT_KIND == 2
+#if LIGHT_KIND == 2
     if (l.info.x == kLightArea) {
         vec3 L;
         float dist;
@@ -191,10 +190,8 @@ void main() {
     float vis = 1.0;
 #if LIGHT_KIND == 0
     if (l.info.y != 0) vis = shadow2D(l, s.P, s.N, L, dist);
-#elif LIGHT_KIND == 1
-    if (l.info.y != 0) vis = shadowCube(l, s.P, s.N, L, dist);
 #else
-    if (l.info.y != 0) vis = cubeShadow(l.info.x) ? shadowCube(l, s.P, s.N, L, dist) : shadow2D(l, s.P, s.N, L, dist);
+    if (l.info.y != 0) vis = shadowCube(l, s.P, s.N, L, dist);
 #endif
     oColor = vec4(f * E * vis, 1.0);
 #endif
