@@ -206,8 +206,8 @@ TEST_F(ParamBlock, RenderLayoutMatchesTheDriver) {
                                                              {GL_FRAGMENT_SHADER, "render/shadow.frag"}}, {linear}));
     for (const char* frag : {"composite", "tonemap", "view"})
         programs.emplace_back(frag, gl::fullscreenProgram(frag, (std::string("render/") + frag + ".frag").c_str()));
-    for (const char* kind : {"LIGHT_KIND=0", "LIGHT_KIND=1", "LIGHT_KIND=2"})
-        programs.emplace_back(kind, gl::fullscreenProgram("light", "render/light.frag", {kind}));
+    for (int kind = 0; kind < Renderer::kLightKinds; ++kind)
+        programs.emplace_back("light kind " + std::to_string(kind), Renderer::lightPassProgram(kind));
     for (const auto& [name, p] : programs) {
         std::vector<std::string> diffs = layoutDifferences(p.id(), kRenderBlockName, "uRender", sizeof(RenderParams), renderMembers());
         EXPECT_TRUE(diffs.empty()) << name << ":\n" << joined(diffs);

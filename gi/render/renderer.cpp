@@ -59,6 +59,12 @@ int lightProgram(LightType type) {
 
 }  // namespace
 
+gl::Program Renderer::lightPassProgram(int kind) {
+    static const char* const kNames[kLightKinds] = {"light2D", "lightPoint", "lightArea"};
+    GI_ASSERT(kind >= 0 && kind < kLightKinds, "LIGHT_KIND is 0, 1 or 2");
+    return gl::fullscreenProgram(kNames[kind], "render/light.frag", {"LIGHT_KIND=" + std::to_string(kind)});
+}
+
 Renderer::Renderer()
     : mDepthProg("depthPrepass", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/depth.frag"}}),
       mShadowProg("shadow", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
@@ -68,9 +74,7 @@ Renderer::Renderer()
       mShadowPointProg("shadowPoint", {{GL_VERTEX_SHADER, "render/shadow.vert"}, {GL_FRAGMENT_SHADER, "render/shadow.frag"}},
                        {"LINEAR_DEPTH=1"}),
       mCompositeProg(gl::fullscreenProgram("composite", "render/composite.frag")),
-      mLightProgs{gl::fullscreenProgram("light2D", "render/light.frag", {"LIGHT_KIND=0"}),
-                  gl::fullscreenProgram("lightPoint", "render/light.frag", {"LIGHT_KIND=1"}),
-                  gl::fullscreenProgram("lightArea", "render/light.frag", {"LIGHT_KIND=2"})},
+      mLightProgs{lightPassProgram(0), lightPassProgram(1), lightPassProgram(2)},
       mToneProg(gl::fullscreenProgram("tonemap", "render/tonemap.frag")),
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
       mBlock(kRenderBlockName, kRenderBlockBinding),

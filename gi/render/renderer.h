@@ -50,6 +50,11 @@ public:
     static void checkMemoryBudget(const FrameSettings& fs, size_t sceneBytes);
     static void checkBudget(const FrameSettings& fs, const Scene& scene) { checkBudget(fs, GPUScene::estimateBytes(scene)); }
 
+    // The light pass's program for LIGHT_KIND `kind` (render/light.frag): 0 a 2D shadow map
+    // (directional, spot), 1 a cube map (point), 2 an area light. Throws gi::Error on a shader error.
+    static constexpr int kLightKinds = 3;
+    static gl::Program lightPassProgram(int kind);
+
     void render(const FrameSettings& fs);
     // Shadow-map redraws since creation: with render.keepStaticWork a frame redraws them only when
     // the scene, a light (its packed entry, type or castShadows) or the map size changed.
@@ -130,7 +135,7 @@ private:
     // without discard (early depth testing), and for Mask and Blend ones (their draws go last).
     gl::Program mDepthProg, mShadowProg, mShadowOpaqueProg, mShadowPointProg, mCompositeProg, mToneProg, mViewProg;
     // The light pass's, one per kind of light (lightProgram() in renderer.cpp).
-    gl::Program mLightProgs[3];
+    gl::Program mLightProgs[kLightKinds];
     gl::UniformBlock<shared::RenderParams> mBlock;  // every program above and below reads it
     MaterialBinding mMaterialBinding;  // the G-buffer and shadow programs read it
     // The G-buffer's, one program per set of material textures (material_programs.h).
