@@ -103,6 +103,7 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     if (anisotropicOn(s) && s.faceSides) {
         bytes += 6 * mipChain(2, res, mips);                            // the coverage atlas
         bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
+        if (s.bounceCount > 1) bytes += 6 * voxels(res) * 8 * size_t(levelCountOf(s));  // and with the bounced light
     }
     if (shOn(s)) bytes += 3 * mipChain(8, res, mips);
     return bytes;
@@ -185,7 +186,7 @@ void VCT::indirect(FrameContext& ctx) {
         auto pass = ctx.timer.scope("vct.mip");
         if (relight) {
             for (Level& l : mLevels) resolve(l, false);
-            buildMips();
+            buildMips(false);
         }
     }
     bounce(ctx, relight);
@@ -276,7 +277,7 @@ void VCT::resolve(Level& level, bool bounced) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void VCT::buildMips() {
+void VCT::buildMips(bool bounced) {
     mMipProg.use();
     // size: the destination's voxels per side; srcOffset, dstOffset: the first x of the
     // direction's slab in the anisotropic atlas (0 elsewhere).
@@ -311,7 +312,8 @@ void VCT::buildMips() {
     if (mAnisotropic) {
         // Mip 0 is level 0 (its sides with vct.faceSides), the rest from the mip below, each with
         // its coverage (mip.comp).
-        if (mFaceSides) glBindTextureUnit(vct::kVCTUnitMipSides, mLevels[0].sidesRadiance.id());
+        if (mFaceSides)
+            glBindTextureUnit(vct::kVCTUnitMipSides, (bounced ? mLevels[0].sidesBounced : mLevels[0].sidesRadiance).id());
         const int r = mResolution;
         for (int d = 0; d < 6; ++d) {
             if (mFaceSides)
@@ -373,6 +375,11 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
             l.occupiedDispatch = gl::createBuffer(16, nullptr, GL_DYNAMIC_STORAGE_BIT);
             mVoxelBytes += l.bouncedFront.bytes() * 2 + voxels(mResolution) * 4;
         }
+    for (Level& l : mLevels)
+        if (mFaceSides && l.sidesBounced.width() != 6 * mResolution) {
+            l.sidesBounced = gl::Texture::create3D(GL_RGBA16F, 6 * mResolution, mResolution, mResolution);
+            mVoxelBytes += l.sidesBounced.bytes();
+        }
     // The occupied voxels of each level, listed once per frame (clipmap slabs change them).
     mCompactProg.use();
     for (Level& l : mLevels) {
@@ -397,6 +404,11 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
             bindVoxelImages(l);
             glBindImageTexture(vct::kVCTImageBouncedFront, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
             glBindImageTexture(vct::kVCTImageBouncedBack, l.bouncedBack.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
+            if (mFaceSides) {
+                glBindImageTexture(vct::kVCTImageSides, l.sides.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+                glBindImageTexture(vct::kVCTImageSidesDirect, l.sidesRadiance.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+                glBindImageTexture(vct::kVCTImageSidesBounced, l.sidesBounced.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            }
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferVoxels, l.occupiedList.id());
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, l.occupiedDispatch.id());
@@ -406,7 +418,7 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
         for (Level& l : mLevels) resolve(l, true);
-        buildMips();
+        buildMips(true);
     }
 }
 

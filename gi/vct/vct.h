@@ -35,9 +35,16 @@
 // it; a surface within kVCTSideMargin of a voxel boundary also fills the voxel across it),
 // injection lights each side under its own normal (inject.comp), and the atlas is built from the
 // sides facing back along each direction, so a cone sees the mean radiance of the faces turned
-// towards it and nothing of a face turned away. The two-room leak falls from 21.6 % to 2.8 %,
-// but the shift test moves by up to 16 % and vct_cornell's SSIM falls 0.824 -> 0.768 (back-facing
-// and grazing voxels become black occluders), so it stays off; the sides hold direct light only.
+// towards it and nothing of a face turned away. A bounce adds to each side the light gathered
+// on the side of the voxel's mean normal it faces, times its coverage (bounce.comp writes
+// sidesBounced, which the atlas's mip 0 then reads). With the default two bounces the two-room
+// leak falls from 35.0 % to 4.3 %, but the shift test moves by up to 17 % and the Cornell
+// presets lose 0.04-0.07 SSIM (vct_cornell 0.812 -> 0.738, 128x96): a cone leaving a surface
+// reads, in the coarser of its two mips, the texel that holds that surface, whose face towards
+// the cone is the surface's unlit back, an opaque black occluder whose weight depends on where
+// the surface falls in the texel. Isotropic voxels read the surface's own light there instead
+// (the same error that shows its lit face through a thin wall), which happens to offset it. So
+// it stays off.
 //   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
 //      specular cone along the reflection gives radiance for the composite's split-sum weight;
 //      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With
@@ -159,6 +166,7 @@ public:
         gl::Buffer occupiedList, occupiedDispatch;  // compact.comp's voxel list and indirect dispatch
         gl::Texture radiance;                   // RGBA16F premultiplied radiance + opacity, mips
         gl::Texture sides, sidesRadiance;       // anisotropic: per-side normals (r32ui) and exit radiance (RGBA16F), 6 res wide
+        gl::Texture sidesBounced;               // faceSides, bounceCount > 1: sidesRadiance plus each side's gathered light
         VoxelBox box;
         bool voxelized = false;
     };
@@ -209,7 +217,7 @@ private:
     void inject(const FrameContext& ctx, bool relight);
     void bindVoxelImages(const Level& level) const;
     void resolve(Level& level, bool bounced);
-    void buildMips();
+    void buildMips(bool bounced);
     void bounce(const FrameContext& ctx, bool relight);
     void trace(const FrameContext& ctx);
     void bindRadiance() const;

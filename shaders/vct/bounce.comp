@@ -15,6 +15,11 @@ layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform readonly image3D uD
 layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform readonly image3D uDirectBack;
 layout(binding = kVCTImageBouncedFront, r11f_g11f_b10f) uniform writeonly image3D uExitFront;  // what resolve.comp reads next
 layout(binding = kVCTImageBouncedBack, r11f_g11f_b10f) uniform writeonly image3D uExitBack;
+#if VCT_SIDES
+layout(binding = kVCTImageSides, r32ui) uniform readonly uimage3D uSidesVox;  // each side's mean normal
+layout(binding = kVCTImageSidesDirect, rgba16f) uniform readonly image3D uSidesDirect;  // inject.comp's sides
+layout(binding = kVCTImageSidesBounced, rgba16f) uniform writeonly image3D uSidesBounced;  // what mip.comp reads next
+#endif
 
 vec3 hemisphere(vec3 p, vec3 n) {
     mat3 frame = tangentFrame(n);
@@ -40,4 +45,15 @@ void main() {
     vec3 front = hemisphere(p, n), back = hemisphere(p, -n);
     imageStore(uExitFront, t, imageLoad(uDirectFront, t) + vec4(albedo * front, 0.0));
     imageStore(uExitBack, t, imageLoad(uDirectBack, t) + vec4(albedo * back, 0.0));
+#if VCT_SIDES
+    // Each side leaves its direct light plus the light gathered on the side of the mean normal
+    // it faces, times its coverage, as inject.comp stores it (the cones are not traced again per side).
+    for (int s = 0; s < 6; ++s) {
+        ivec3 ts = t + ivec3(s * uVCT.resolution, 0, 0);
+        vec4 direct = imageLoad(uSidesDirect, ts);
+        vec3 ns = unpackVoxel(imageLoad(uSidesVox, ts).r).xyz * 2.0 - 1.0;
+        vec3 gathered = dot(ns, n) >= 0.0 ? front : back;
+        imageStore(uSidesBounced, ts, vec4(direct.rgb + albedo * gathered * direct.a, direct.a));
+    }
+#endif
 }
