@@ -16,13 +16,22 @@ layout(binding = kLPVImageIndirect, rgba16f) uniform writeonly image2D uIndirect
 layout(binding = kLPVUnitSH) uniform sampler3D uSH[kLPVSHChannels * kLPVMaxCascades];
 const int kSHR = 0, kSHG = 1, kSHB = 2;
 
+// Channel c of cascade k at tc. GLSL indexes an array of samplers only by a dynamically uniform
+// expression (undefined otherwise), and the cascade differs between neighbouring pixels, so each
+// cascade's lookup has its own constant index; a CPU rasterizer runs only the cascades some
+// invocation executed together needs (the rest are skipped whole).
+vec4 lookup(int k, int c, vec3 tc) {
+    vec4 r = vec4(0.0);
+    for (int i = 0; i < kLPVMaxCascades; ++i)
+        if (i == k) r = texture(uSH[kLPVSHChannels * i + c], tc);
+    return r;
+}
+
 vec3 irradiance(int k, vec3 p, vec3 n) {
     vec3 g = (p - uLPV.cascadeMinCell[k].xyz) / uLPV.cascadeMinCell[k].w;
     vec3 tc = g / float(uLPV.resolution);
     vec4 lobe = shCosLobe(-n);
-    int sh = kLPVSHChannels * k;
-    vec3 e = vec3(dot(texture(uSH[sh + kSHR], tc), lobe), dot(texture(uSH[sh + kSHG], tc), lobe),
-                  dot(texture(uSH[sh + kSHB], tc), lobe));
+    vec3 e = vec3(dot(lookup(k, kSHR, tc), lobe), dot(lookup(k, kSHG, tc), lobe), dot(lookup(k, kSHB, tc), lobe));
     return max(e, 0.0) * kLPVRadianceScale;
 }
 
@@ -30,7 +39,7 @@ vec3 irradiance(int k, vec3 p, vec3 n) {
 // lookup instead of three keeps the pass cheap.
 float greenIrradiance(int k, vec3 p, vec3 n) {
     vec3 tc = (p - uLPV.cascadeMinCell[k].xyz) / (uLPV.cascadeMinCell[k].w * float(uLPV.resolution));
-    return max(dot(texture(uSH[kLPVSHChannels * k + kSHG], tc), shCosLobe(-n)), 0.0);
+    return max(dot(lookup(k, kSHG, tc), shCosLobe(-n)), 0.0);
 }
 
 vec3 dampedIrradiance(int k, vec3 p, vec3 n) {
