@@ -374,11 +374,12 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
             l.occupiedList = gl::createBuffer(voxels(mResolution) * 4, nullptr, 0);
             l.occupiedDispatch = gl::createBuffer(16, nullptr, GL_DYNAMIC_STORAGE_BIT);
             mVoxelBytes += l.bouncedFront.bytes() * 2 + voxels(mResolution) * 4;
-        }
-    for (Level& l : mLevels)
-        if (mFaceSides && l.sidesBounced.width() != 6 * mResolution) {
-            l.sidesBounced = gl::Texture::create3D(GL_RGBA16F, 6 * mResolution, mResolution, mResolution);
-            mVoxelBytes += l.sidesBounced.bytes();
+            // The sides with their gathered light; only occupied voxels' texels are written, and
+            // mip.comp reads the others as empty (their opacity is 0).
+            if (mFaceSides) {
+                l.sidesBounced = gl::Texture::create3D(GL_RGBA16F, 6 * mResolution, mResolution, mResolution);
+                mVoxelBytes += l.sidesBounced.bytes();
+            }
         }
     // The occupied voxels of each level, listed once per frame (clipmap slabs change them).
     mCompactProg.use();

@@ -13,7 +13,7 @@ bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(less
 // The mean normal, unit length; zero where the normals in a cell cancel (the running average is
 // shorter than 1e-3), and the cell then reflects to both sides alike.
 vec3 meanNormal(uint packedNormal) {
-    vec3 n = unpackVoxel(packedNormal).xyz * 2.0 - 1.0;
+    vec3 n = voxelNormal(packedNormal);
     float l = length(n);
     return l > 1e-3 ? n / l : vec3(0.0);
 }

@@ -38,7 +38,7 @@ void main() {
     ivec3 t = texelOf(v);
     uint a = imageLoad(uAlbedoVox, t).r;
     vec3 albedo = unpackVoxel(a).rgb;
-    vec3 nn = unpackVoxel(imageLoad(uNormalVox, t).r).xyz * 2.0 - 1.0;
+    vec3 nn = voxelNormal(imageLoad(uNormalVox, t).r);
     vec3 n = length(nn) > 1e-3 ? normalize(nn) : vec3(0.0, 1.0, 0.0);
     vec3 p = voxelCentre(v);
     // E / pi on each side; the surface then leaves albedo * E / pi.
@@ -51,7 +51,7 @@ void main() {
     for (int s = 0; s < 6; ++s) {
         ivec3 ts = t + ivec3(s * uVCT.resolution, 0, 0);
         vec4 direct = imageLoad(uSidesDirect, ts);
-        vec3 ns = unpackVoxel(imageLoad(uSidesVox, ts).r).xyz * 2.0 - 1.0;
+        vec3 ns = voxelNormal(imageLoad(uSidesVox, ts).r);
         vec3 gathered = dot(ns, n) >= 0.0 ? front : back;
         imageStore(uSidesBounced, ts, vec4(direct.rgb + albedo * gathered * direct.a, direct.a));
     }

@@ -79,7 +79,7 @@ void injectSides(ivec3 v, ivec3 t, uint packedAlbedo) {
         uint packedSide = imageLoad(uSidesVox, ts).r;
         if (occupied(packedSide) && occupied(packedAlbedo)) {
             vec4 u = unpackVoxel(packedSide);
-            vec3 n = u.xyz * 2.0 - 1.0;
+            vec3 n = voxelNormal(packedSide);
             vec3 axis = vec3(0.0);
             axis[s / 2] = (s & 1) == 0 ? 1.0 : -1.0;
             float coverage = clamp(round(u.a * kVCTMaxCount) / total * max(dot(n, axis), 0.0), 0.0, 1.0);
@@ -100,7 +100,7 @@ void main() {
     uint packedAlbedo = imageLoad(uAlbedoVox, t).r;
     if (uVCT.sides != 0) injectSides(v, t, packedAlbedo);
     if (occupied(packedAlbedo)) {
-        vec3 n = unpackVoxel(packedNormal).xyz * 2.0 - 1.0;
+        vec3 n = voxelNormal(packedNormal);
         float len = length(n);
         n = len > 1e-3 ? n / len : vec3(0.0, 1.0, 0.0);
         vec3 p = voxelCentre(v);

@@ -24,7 +24,7 @@ void main() {
     vec3 front = vec3(0.0), back = vec3(0.0), n = vec3(0.0, 1.0, 0.0);
     float alpha = 0.0;
     if (occupied(imageLoad(uAlbedoVox, t).r)) {
-        vec3 nn = unpackVoxel(imageLoad(uNormalVox, t).r).xyz * 2.0 - 1.0;
+        vec3 nn = voxelNormal(imageLoad(uNormalVox, t).r);
         if (length(nn) > 1e-3) n = normalize(nn);
         front = imageLoad(uExitFront, t).rgb;
         back = imageLoad(uExitBack, t).rgb;
