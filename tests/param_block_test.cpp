@@ -85,7 +85,7 @@ std::vector<Member> volumeMembers() {
 std::vector<Member> renderMembers() {
     using T = RenderParams;
     return {GI_MEMBER(T, viewProj),    GI_MEMBER(T, invViewProj), GI_MEMBER(T, cameraPos),
-            GI_MEMBER(T, lightPos),    GI_MEMBER(T, shadowFar),   GI_MEMBER(T, lightIndex),
+            GI_MEMBER(T, lightPos),    GI_MEMBER(T, shadowFar),   GI_MEMBER(T, pad0),
             GI_MEMBER(T, shadowSize),  GI_MEMBER(T, pcfRadius),   GI_MEMBER(T, shadowBias),  GI_MEMBER(T, specular),
             GI_MEMBER(T, exposureScale), GI_MEMBER(T, toneOp),    GI_MEMBER(T, channelMask), GI_MEMBER(T, direction),
             GI_MEMBER(T, pan),         GI_MEMBER(T, zoom),        GI_MEMBER(T, level),       GI_MEMBER(T, mode),

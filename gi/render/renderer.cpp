@@ -78,6 +78,7 @@ Renderer::Renderer()
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
       mLightProgs{lightPassProgram(0), lightPassProgram(1), lightPassProgram(2)},
       mBlock(kRenderBlockName, kRenderBlockBinding),
+      mLightBlock("LightBlock", kLightPassBlockBinding),
       mGBufferProgs("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}, {},
                     mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }),
       mGBufferOpaqueProgs("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
@@ -85,6 +86,7 @@ Renderer::Renderer()
     for (gl::Program* p : {&mDepthProg, &mShadowProg, &mShadowOpaqueProg, &mShadowPointProg, &mCompositeProg, &mLightProgs[0], &mLightProgs[1], &mLightProgs[2], &mToneProg, &mViewProg})
         mBlock.requireIn(*p);
     for (gl::Program* p : {&mShadowProg, &mShadowOpaqueProg, &mShadowPointProg}) mMaterialBinding.requireIn(*p);
+    for (gl::Program& p : mLightProgs) mLightBlock.requireIn(p);
     // Effects live as long as the renderer; the technique is made when it is chosen.
     for (const PassInfo& info : passRegistry())
         if (info.role == PassRole::Effect) mPasses.push_back({&info, info.create()});
@@ -497,8 +499,8 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     for (size_t i = 0; i < fs.lights.size(); ++i) {
         const LightSettings& l = fs.lights[i];
         const ShadowMap& sm = mShadows[i];
-        params.lightIndex = int(i);
         mBlock.set(params);
+        mLightBlock.set(mLightBuffer[i]);
         const bool cube = light::cubeShadow(int(l.type));
         mLightProgs[lightProgram(l.type)].use();
         if (l.castShadows) glBindTextureUnit(cube ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());

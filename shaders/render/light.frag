@@ -18,6 +18,8 @@ layout(binding = kUnitShadow2D) uniform sampler2DShadow uShadow2D;
 layout(binding = kUnitShadowCube) uniform samplerCubeShadow uShadowCube;
 layout(binding = kUnitShadowCubeDepth) uniform samplerCube uShadowCubeDepth;
 
+layout(std140, binding = kLightPassBlockBinding) uniform LightBlock { GPULight uLight; };
+
 in vec2 vUV;
 out vec4 oColor;
 
@@ -158,7 +160,7 @@ void main() {
     Surface s;
     if (!readSurface(px, vUV, s)) discard;
 
-    GPULight l = uLights[uRender.lightIndex];
+    GPULight l = uLight;
 #if LIGHT_KIND == 2
     if (l.info.x == kLightArea) {
         vec3 L;
