@@ -173,13 +173,16 @@ void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
         glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(shared::kDiffusionImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferAccum, mAccum.id());
+        glTextureBuffer(mAccumView.id(), GL_RGBA32F, mAccum.id());
+        glBindTextureUnit(shared::kDiffusionUnitShadeAccum, mAccumView.id());
         glDispatchCompute(gl::groupCount(ctx.width, shared::kGroup2D), gl::groupCount(ctx.height, shared::kGroup2D), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindTextureUnit(shared::kDiffusionUnitShadeAccum, 0);
         mResolveProg.use();
         glBindImageTexture(shared::kDiffusionImageView, mView.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(shared::kDiffusionImageViewInFlight, mViewInFlight.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(shared::kDiffusionImageViewBounces, mViewBounces.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferAccum, mAccum.id());
         // The light in flight after the last step: step k writes mLight[(k + 1) % 2].
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferSource, mLight[std::max(mStepsDone, 0) % 2].id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderAccum, mOrderAccum.id());

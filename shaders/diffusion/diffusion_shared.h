@@ -40,6 +40,9 @@ GI_CONST int kDiffusionImageStepDestination = 2; // gather: the next step's ligh
 GI_CONST int kDiffusionImageStepAccum = 3;       // gather: the accumulation
 GI_CONST int kDiffusionImageStepOrderDestination = 4;  // gather: r32f
 GI_CONST int kDiffusionImageStepOrderAccum = 5;        // gather: r32f
+// shade reads the accumulation through a buffer texture too (3 texels per cell), beside the
+// G-buffer's normal and depth (kUnitNormal, kUnitDepth).
+GI_CONST int kDiffusionUnitShadeAccum = 2;
 
 // The face transfer (seed 001 eq. 3.2.1-3.2.3, corrected, see propagate.glsl): the 2-band SH of
 // the indicator of the solid angle a cell's face subtends from its centre (2 pi / 3), towards

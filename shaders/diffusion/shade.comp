@@ -20,7 +20,8 @@ layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kDiffusionImageAlbedo, r32ui) uniform readonly uimage3D uAlbedo;
 layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uVoxelNormal;
 layout(binding = kDiffusionImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
-layout(std430, binding = kDiffusionBufferAccum) readonly buffer Accumulated { vec4 accum[]; };
+// A buffer texture over the accumulation (lpv/propagate.comp says why not shader storage).
+layout(binding = kDiffusionUnitShadeAccum) uniform samplerBuffer uAccum;  // 3 texels (R, G, B) per cell
 
 // Whether light can reach occupied cell c: it has an empty face neighbour inside the grid.
 bool reachable(ivec3 c) {
@@ -54,9 +55,9 @@ void main() {
             vec3 t = mix(1.0 - f, f, vec3(o));
             float weight = t.x * t.y * t.z;
             int i = 3 * cellIndex(c);
-            r += weight * accum[i];
-            gr += weight * accum[i + 1];
-            b += weight * accum[i + 2];
+            r += weight * texelFetch(uAccum, i);
+            gr += weight * texelFetch(uAccum, i + 1);
+            b += weight * texelFetch(uAccum, i + 2);
             total += weight;
         }
         if (total == 0.0) {
@@ -66,9 +67,9 @@ void main() {
                 if (!insideGrid(c) || !occupied(imageLoad(uAlbedo, c).r) || !reachable(c)) continue;
                 if (dot(meanNormal(imageLoad(uVoxelNormal, c).r), n) < 0.5) continue;
                 int i = 3 * cellIndex(c);
-                r += accum[i];
-                gr += accum[i + 1];
-                b += accum[i + 2];
+                r += texelFetch(uAccum, i);
+                gr += texelFetch(uAccum, i + 1);
+                b += texelFetch(uAccum, i + 2);
                 total += 1.0;
             }
         }
