@@ -112,4 +112,13 @@ void LightBuffer::upload(const std::vector<LightSettings>& lights, const std::ve
     uploadStorage(mBuffer, mCapacity, mLights, light::kLightBufferBinding);
 }
 
+light::GPULightWithTriangles LightBuffer::withTriangles(size_t i) const {
+    light::GPULightWithTriangles b{};
+    b.light = mLights[i];
+    const glm::ivec4 info = b.light.info;
+    if (info.x == light::kLightArea && info.w <= light::kAreaMaxExactTriangles)
+        for (int t = 0; t < info.w; ++t) b.triangles[t] = mTriangles[size_t(info.z + t)];
+    return b;
+}
+
 }  // namespace gi

@@ -52,6 +52,8 @@ public:
     void upload(const std::vector<LightSettings>& lights, const std::vector<Emitter>& emitters, const Bounds& sceneBounds,
                 int shadowSize);
     const light::GPULight& operator[](size_t i) const { return mLights[i]; }
+    // Light i with its triangles when it is an area light of at most kAreaMaxExactTriangles.
+    light::GPULightWithTriangles withTriangles(size_t i) const;
 
 private:
     std::vector<light::GPULight> mLights;

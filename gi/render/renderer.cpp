@@ -500,7 +500,7 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
         const LightSettings& l = fs.lights[i];
         const ShadowMap& sm = mShadows[i];
         mBlock.set(params);
-        mLightBlock.set(mLightBuffer[i]);
+        mLightBlock.set(mLightBuffer.withTriangles(i));
         const bool cube = light::cubeShadow(int(l.type));
         mLightProgs[lightProgram(l.type)].use();
         if (l.castShadows) glBindTextureUnit(cube ? kUnitShadowCube : kUnitShadow2D, sm.depth.id());

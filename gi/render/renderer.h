@@ -137,7 +137,7 @@ private:
     // The light pass's, one per kind of light (lightProgram() in renderer.cpp).
     gl::Program mLightProgs[kLightKinds];
     gl::UniformBlock<shared::RenderParams> mBlock;  // every program above and below reads it
-    gl::UniformBlock<light::GPULight> mLightBlock;  // the light pass's light
+    gl::UniformBlock<light::GPULightWithTriangles> mLightBlock;  // the light pass's light
     MaterialBinding mMaterialBinding;  // the G-buffer and shadow programs read it
     // The G-buffer's, one program per set of material textures (material_programs.h).
     MaterialPrograms mGBufferProgs, mGBufferOpaqueProgs;

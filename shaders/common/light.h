@@ -80,10 +80,20 @@ struct GPUAreaTriangle {
     vec4 radiance;  // rgb
 };
 
+// One light with its triangles when it is an area light of at most kAreaMaxExactTriangles (the
+// rest left zero): what the raster light pass reads per pixel, as a uniform block
+// (render/light.frag's LightBlock), where llvmpipe loads each field once per draw; from the
+// storage buffers above it loaded them per fragment.
+struct GPULightWithTriangles {
+    GPULight light;
+    GPUAreaTriangle triangles[kAreaMaxExactTriangles];
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(GPULight) == 160, "GPULight must match its std430 layout");
 static_assert(offsetof(GPULight, info) == 80 && offsetof(GPULight, shadowViewProj) == 96, "GPULight must match std430");
 static_assert(sizeof(GPUAreaTriangle) == 64, "GPUAreaTriangle must match its std430 layout");
+static_assert(sizeof(GPULightWithTriangles) == 160 + 64 * kAreaMaxExactTriangles, "GPULightWithTriangles must match std140");
 #else
 layout(std430, binding = kLightBufferBinding) readonly buffer LightBuffer { GPULight uLights[]; };
 layout(std430, binding = kAreaTriangleBinding) readonly buffer AreaTriangleBuffer { GPUAreaTriangle uAreaTriangles[]; };
@@ -189,15 +199,18 @@ GI_FUNC float triangleIrradiance(vec3 a, vec3 b, vec3 c, vec3 P, vec3 N, bool do
 }
 
 #ifndef __cplusplus
-// The exact irradiance at P (unit normal N) of area light l: its triangles' radiance times
-// triangleIrradiance, summed. For lights of at most kAreaMaxExactTriangles triangles; larger ones
-// are shaded as their point with a cosine lobe (lightFalloff).
+// The irradiance at P (unit normal N) of one triangle of area light l: its radiance times
+// triangleIrradiance.
+vec3 areaTriangleIrradiance(GPULight l, GPUAreaTriangle tri, vec3 P, vec3 N) {
+    return tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, P, N, l.spot.z != 0.0);
+}
+
+// The exact irradiance at P of area light l: its triangles' (the area buffer's) summed. For
+// lights of at most kAreaMaxExactTriangles triangles; larger ones are shaded as their point with
+// a cosine lobe (lightFalloff).
 vec3 areaIrradiance(GPULight l, vec3 P, vec3 N) {
     vec3 E = vec3(0.0);
-    for (int i = 0; i < l.info.w; ++i) {
-        GPUAreaTriangle tri = uAreaTriangles[l.info.z + i];
-        E += tri.radiance.rgb * triangleIrradiance(tri.p0.xyz, tri.p1.xyz, tri.p2.xyz, P, N, l.spot.z != 0.0);
-    }
+    for (int i = 0; i < l.info.w; ++i) E += areaTriangleIrradiance(l, uAreaTriangles[l.info.z + i], P, N);
     return E;
 }
 #endif

@@ -18,7 +18,18 @@ layout(binding = kUnitShadow2D) uniform sampler2DShadow uShadow2D;
 layout(binding = kUnitShadowCube) uniform samplerCubeShadow uShadowCube;
 layout(binding = kUnitShadowCubeDepth) uniform samplerCube uShadowCubeDepth;
 
-layout(std140, binding = kLightPassBlockBinding) uniform LightBlock { GPULight uLight; };
+// The light this draw adds, with its triangles when it is an area light (GPULightWithTriangles).
+layout(std140, binding = kLightPassBlockBinding) uniform LightBlock {
+    GPULight uLight;
+    GPUAreaTriangle uLightTriangles[kAreaMaxExactTriangles];
+};
+
+// areaIrradiance (common/light.h) over the block's copy of the light's triangles.
+vec3 lightAreaIrradiance(GPULight l, vec3 P, vec3 N) {
+    vec3 E = vec3(0.0);
+    for (int i = 0; i < l.info.w; ++i) E += areaTriangleIrradiance(l, uLightTriangles[i], P, N);
+    return E;
+}
 
 in vec2 vUV;
 out vec4 oColor;
@@ -122,7 +133,7 @@ vec3 areaLight(GPULight l, Surface s, out vec3 L, out float dist) {
     dist = max(length(toLight), 1e-6);
     L = toLight / dist;
     vec3 E = l.info.w <= kAreaMaxExactTriangles
-                 ? areaIrradiance(l, s.P, s.N)
+                 ? lightAreaIrradiance(l, s.P, s.N)
                  : l.color.rgb * lightFalloff(l, dist, dot(-L, l.direction.xyz)) * max(dot(s.N, L), 0.0);
     if (all(equal(E, vec3(0.0)))) return vec3(0.0);
     vec3 result = s.baseColor * (1.0 - s.metallic) / kPi * E;

@@ -21,9 +21,10 @@ namespace gi::shared {
 
 // Uniform-buffer binding of RenderBlock.
 GI_CONST int kRenderBlockBinding = 0;
-// Uniform-buffer binding of the light pass's LightBlock: the one GPULight it draws (a copy of
-// uLights[i]). Read per pixel, a uniform block costs llvmpipe half what the storage buffer does
-// (the light pass on vct_cornell 1280x720: 145 -> 75 ms). 1 is kMaterialBlockBinding.
+// Uniform-buffer binding of the light pass's LightBlock: the one light it draws (a copy of
+// uLights[i] and its area triangles, common/light.h GPULightWithTriangles). Read per pixel, a
+// uniform block costs llvmpipe half what the storage buffers do (the light pass on vct_cornell
+// 1280x720: 145 -> 75 ms). 1 is kMaterialBlockBinding.
 GI_CONST int kLightPassBlockBinding = 2;
 
 struct RenderParams {
