@@ -22,7 +22,7 @@ void MaterialPrograms::prepare(gl::Program& p) const {
 
 const gl::Program& MaterialPrograms::of(const Material& m, bool specialise) {
     if (!specialise) return mGeneral;
-    const int mask = materialTextureMask(m);
+    const int mask = materialTextureMask(m) | (m.emissive != glm::vec3(0.0f) ? shared::kMaterialVariantEmits : 0);
     auto it = mVariants.find(mask);
     if (it == mVariants.end()) {
         std::unique_ptr<gl::Program> p;

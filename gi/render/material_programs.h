@@ -1,5 +1,5 @@
-// Programs that rasterize the scene's materials, one per set of texture slots a material has
-// (MATERIAL_TEXTURES in common/material.glsl), built when a material first needs it.
+// Programs that rasterize the scene's materials, one per set of texture slots a material has and
+// whether it emits (MATERIAL_TEXTURES in common/material.glsl), built when a material first needs it.
 //
 // Why: a CPU rasterizer runs both sides of a branch, masked, even where the condition is the
 // same for every invocation, so the general program (which tests the material's textureMask at
@@ -28,7 +28,7 @@ public:
     MaterialPrograms(std::string name, std::vector<gl::StageSource> stages, std::vector<std::string> defines,
                      const MaterialBinding& binding, std::function<void(gl::Program&)> requireBlocks);
 
-    // The program for this material's texture slots. A variant that does not build (its shader
+    // The program for this material's texture slots and emission. A variant that does not build (its shader
     // edited on disk into an error since the last reload) falls back to the general program,
     // which draws the same pixels; reload() tries again.
     // With `specialise` false: the general program for every material.

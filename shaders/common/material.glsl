@@ -44,11 +44,13 @@ vec4 sampleMaterial(sampler2D tex, vec2 uv) {
     return sum / n;
 }
 
-// MATERIAL_TEXTURES: the texture slots a program is built for (gi/render/material_programs.h);
-// slots outside it are left out at compile time, since a CPU rasterizer executes a branch that
-// no invocation takes (masked) and paid for every absent texture's read.
+// MATERIAL_TEXTURES: the texture slots a program is built for (gi/render/material_programs.h),
+// and kMaterialVariantEmits where the material's emissive factor is not zero; slots outside it
+// are left out at compile time, since a CPU rasterizer executes a branch that no invocation
+// takes (masked) and paid for every absent texture's read. Without kMaterialVariantEmits the
+// emission is 0 at compile time, and with it the G-buffer's lookup of the fragment's emitter.
 #ifndef MATERIAL_TEXTURES
-#define MATERIAL_TEXTURES 31  // the general program: every slot tested at run time
+#define MATERIAL_TEXTURES 63  // the general program: every slot and the emission tested at run time
 #endif
 bool materialHas(int slot) { return (MATERIAL_TEXTURES & (1 << slot)) != 0 && (uMaterialParams.textureMask & (1 << slot)) != 0; }
 
@@ -110,6 +112,7 @@ float materialOcclusion(vec2 uv0, vec2 uv1) {
 
 // Emitted radiance: the factor times the sRGB texture; nothing from a single-sided back face.
 vec3 materialEmission(bool frontFacing, vec2 uv0, vec2 uv1) {
+    if ((MATERIAL_TEXTURES & kMaterialVariantEmits) == 0) return vec3(0.0);  // the factor is 0
     if (!frontFacing && uMaterialParams.doubleSided == 0) return vec3(0.0);
     vec3 e = uMaterialParams.emissive.rgb;
     if (materialHas(kSlotEmissiveTex) && any(greaterThan(e, vec3(0.0))))

@@ -18,6 +18,9 @@ GI_CONST int kSlotMetallicRoughnessTex = 1;  // linear: G roughness, B metallic
 GI_CONST int kSlotNormalTex = 2;           // linear tangent-space normal
 GI_CONST int kSlotOcclusionTex = 3;        // linear: R
 GI_CONST int kSlotEmissiveTex = 4;         // sRGB
+// A program variant's key (MATERIAL_TEXTURES, common/material.glsl) holds a bit per slot with a
+// texture and this one where the emissive factor is not zero.
+GI_CONST int kMaterialVariantEmits = 1 << kMaterialSlotCount;
 GI_CONST int kAlphaOpaque = 0;
 GI_CONST int kAlphaMask = 1;
 GI_CONST int kAlphaBlend = 2;  // a dithered mask: cut where alpha < a per-pixel threshold
