@@ -420,9 +420,10 @@ TEST_F(LPVGL, TheIndirectLightIsTheSameAtAnyScale) {
     for (float scale : {0.01f, 100.0f}) EXPECT_NEAR(mean(scale) / original, 1.0, 0.02) << "scale " << scale;
 }
 
-// Issue 17 item 4: RSMs are kept under static lights. A camera move inside the cascades' snap
-// keeps them, with the pixels of a renderer that redraws them; a moving camera carries a
-// directional light's cascade maps along with their boxes; a moved light redraws its maps.
+// Issue 17 item 4: RSMs are kept under static lights, and so is their injection. A camera move
+// inside the cascades' snap keeps them, with the pixels of a renderer that redraws them; a moving
+// camera carries a directional light's cascade maps along with their boxes; a moved light redraws
+// its maps and injects again.
 TEST_F(LPVGL, StaticRSMsAreKeptAndRedrawnWhenALightMoves) {
     Scene scene = makeBuiltinScene("cornell");
     Preset p;
@@ -436,12 +437,15 @@ TEST_F(LPVGL, StaticRSMsAreKeptAndRedrawnWhenALightMoves) {
     ASSERT_NE(lpvOf(r), nullptr);
     int maps = lpvOf(r)->rsmDrawCount();
     ASSERT_GT(maps, 0);
+    EXPECT_EQ(lpvOf(r)->injectCount(), 1);
     r.render(fs);
     EXPECT_EQ(lpvOf(r)->rsmDrawCount(), maps) << "static lights: no map drawn again";
+    EXPECT_EQ(lpvOf(r)->injectCount(), 1) << "static lights: the injection is kept";
     FrameSettings turned = fs;
     turned.camera.target += glm::vec3(0.2f, -0.1f, 0.0f);
     r.render(turned);
     EXPECT_EQ(lpvOf(r)->rsmDrawCount(), maps) << "a camera turn keeps the cascades and the maps";
+    EXPECT_EQ(lpvOf(r)->injectCount(), 1);
     EXPECT_EQ(r.readHDR(), test::renderedAfresh(scene, turned)->readHDR()) << "kept maps give the pixels redrawn ones do";
 
     FrameSettings moved = turned;
@@ -449,9 +453,48 @@ TEST_F(LPVGL, StaticRSMsAreKeptAndRedrawnWhenALightMoves) {
     moved.lights[0].direction += glm::vec3(0.05f, 0.0f, 0.0f);
     r.render(moved);
     EXPECT_EQ(lpvOf(r)->rsmDrawCount(), 2 * maps) << "a moved light redraws them";
+    EXPECT_EQ(lpvOf(r)->injectCount(), 2) << "and injects them again";
+    EXPECT_EQ(r.readHDR(), test::renderedAfresh(scene, moved)->readHDR());
     moved.render.keepStaticWork = false;
     r.render(moved);
     EXPECT_EQ(lpvOf(r)->rsmDrawCount(), 3 * maps) << "keepStaticWork off: every frame";
+    EXPECT_EQ(lpvOf(r)->injectCount(), 3);
+}
+
+// A point light's cube RSM feeds every cascade and stays while the camera moves, but the boxes
+// it was injected into follow the camera: a move past a cell injects again, into the new boxes.
+TEST_F(LPVGL, KeptInjectionFollowsTheCascades) {
+    Scene scene = makeBuiltinScene("cornell_lamp");
+    Preset p;
+    p.header.technique.name = "lpv";
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    // Inside the box, so both cascades hold lit walls.
+    fs.camera.eye = glm::vec3(0.0f, 1.0f, 0.6f);
+    fs.camera.target = glm::vec3(0.0f, 1.0f, -1.0f);
+    fs.lpv.cascadeCount = 2;
+    fs.lpv.cascadeExtent = 1.5f;
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    const LPV* lpv = dynamic_cast<const LPV*>(r.technique());
+    ASSERT_NE(lpv, nullptr);
+    const int maps = lpv->rsmDrawCount();
+    ASSERT_EQ(lpv->injectCount(), 1);
+    FrameSettings moved = fs;
+    const glm::vec3 step(4.0f * lpv->cascades()[1].cellSize, 0.0f, 0.0f);
+    moved.camera.eye += step;
+    moved.camera.target += step;
+    r.render(moved);
+    EXPECT_EQ(lpv->rsmDrawCount(), maps) << "the cube RSM does not depend on the camera";
+    EXPECT_EQ(lpv->injectCount(), 2) << "the boxes moved";
+    EXPECT_EQ(r.readHDR(), test::renderedAfresh(scene, moved)->readHDR());
+    std::vector<float> indirect = r.readIndirectRadiance();
+    double mean = 0.0;
+    for (float v : indirect) mean += v;
+    EXPECT_GT(mean / double(indirect.size()), 0.01) << "the view holds indirect light the injection decides";
+    r.render(moved);
+    EXPECT_EQ(lpv->injectCount(), 2);
+    EXPECT_EQ(r.readHDR(), test::renderedAfresh(scene, moved)->readHDR());
 }
 
 }  // namespace

@@ -111,8 +111,8 @@ LPV::~LPV() = default;
 
 size_t LPV::estimateBytes(const FrameSettings& fs) {
     const LPVSettings& s = fs.lpv;
-    size_t perCascade = 5 * cells(s.gridResolution) * kCoefficients * 4  // inject, ping, pong, gather, accum
-                        + 3 * corners(s.gridResolution) * 4 * 4           // geometry from RSMs and G-buffer, albedo
+    size_t perCascade = 6 * cells(s.gridResolution) * kCoefficients * 4  // inject, its kept copy, ping, pong, gather, accum
+                        + 5 * corners(s.gridResolution) * 4 * 4           // geometry from RSMs and G-buffer, albedo, the RSMs' kept
                         + 3 * cells(s.gridResolution) * 8                 // SH textures
                         + 2 * corners(s.gridResolution) * 8               // geometry textures
                         + cells(s.gridResolution) * 32;                   // face transmittance
@@ -133,12 +133,15 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
         // propagate.comp views a grid as a buffer texture of 3 texels per cell.
         gl::requireBufferTexels(cells(mResolution) * kCoefficients / 4, "lpv.gridResolution");
         mCascadeData.clear();
+        mInjectedBoxes.clear();  // nothing injected or added up is kept in the new buffers
+        mGeometryBoxes.clear();
         mVolumeBytes = mGeometryBytes = 0;
         int r = mResolution;
         for (int k = 0; k < s.cascadeCount; ++k) {
             Cascade c;
             size_t shBytes = cells(r) * kCoefficients * 4;
             c.inject = zeroBuffer(shBytes);
+            c.injected = zeroBuffer(shBytes);
             c.ping = zeroBuffer(shBytes);
             c.pong = zeroBuffer(shBytes);
             c.accum = zeroBuffer(shBytes);
@@ -146,14 +149,16 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
             c.geometryRSM = zeroBuffer(corners(r) * 16);
             c.albedo = zeroBuffer(corners(r) * 16);
             c.geometryGBuffer = zeroBuffer(corners(r) * 16);
+            c.geometryRSMKept = zeroBuffer(corners(r) * 16);
+            c.albedoKept = zeroBuffer(corners(r) * 16);
             c.transmit = zeroBuffer(cells(r) * 32);
             c.shR = gl::Texture::create3D(GL_RGBA16F, r, r, r);
             c.shG = gl::Texture::create3D(GL_RGBA16F, r, r, r);
             c.shB = gl::Texture::create3D(GL_RGBA16F, r, r, r);
             c.geometryRSMVolume = gl::Texture::create3D(GL_RGBA16F, r + 1, r + 1, r + 1);
             c.geometryGBufferVolume = gl::Texture::create3D(GL_RGBA16F, r + 1, r + 1, r + 1);
-            mVolumeBytes += 5 * shBytes + c.shR.bytes() * 3;
-            mGeometryBytes += 3 * corners(r) * 16 + 2 * c.geometryRSMVolume.bytes() + cells(r) * 32;
+            mVolumeBytes += 6 * shBytes + c.shR.bytes() * 3;
+            mGeometryBytes += 5 * corners(r) * 16 + 2 * c.geometryRSMVolume.bytes() + cells(r) * 32;
             mCascadeData.push_back(std::move(c));
         }
     }
@@ -211,6 +216,7 @@ void LPV::renderRSMs(const FrameContext& ctx) {
     // scene, every light and LPV setting (ctx.changes: any light field; the RSM size
     // reallocates) and its own projection (a directional light's follows its cascade).
     const bool redrawAll = !fs.render.keepStaticWork || ctx.changes != 0 || ctx.scene.id() != mRSMSceneId;
+    const int drawsBefore = mRSMDraws;
     mRSMSceneId = ctx.scene.id();
     // Draws the scene into map m, with the light's entry li in the light buffer.
     auto draw = [&](RSM& m, size_t li) {
@@ -303,11 +309,28 @@ void LPV::renderRSMs(const FrameContext& ctx) {
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    mRSMsChanged = redrawAll || mRSMDraws != drawsBefore;
+}
+
+bool LPV::keepsRSMWork(const FrameContext& ctx, const std::vector<CascadeBox>& keptFor) const {
+    if (!ctx.settings.render.keepStaticWork || mRSMsChanged || keptFor.size() != mBoxes.size()) return false;
+    for (size_t k = 0; k < mBoxes.size(); ++k)
+        if (keptFor[k].min != mBoxes[k].min || keptFor[k].cellSize != mBoxes[k].cellSize) return false;
+    return true;
 }
 
 void LPV::inject(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("lpv.inject");
     const LPVSettings& s = ctx.settings.lpv;
+    // The injection depends on the RSMs, the cascades' boxes and the LPV settings (which redraw
+    // the RSMs): with none of them changed, the copy kept from the last injection is restored
+    // (propagation overwrites `inject` with each bounce's light, so it cannot simply stay).
+    const GLsizeiptr shBytes = GLsizeiptr(cells(mResolution) * kCoefficients * 4);
+    if (keepsRSMWork(ctx, mInjectedBoxes)) {
+        for (auto& c : mCascadeData) glCopyNamedBufferSubData(c.injected.id(), c.inject.id(), 0, 0, shBytes);
+        return;
+    }
+    ++mInjects;
     for (auto& c : mCascadeData) clearBuffer(c.inject);
     mInjectProg.use();
     for (const RSM& m : mRSMs) {
@@ -326,18 +349,31 @@ void LPV::inject(const FrameContext& ctx) {
             glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
         }
     }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    for (auto& c : mCascadeData) glCopyNamedBufferSubData(c.inject.id(), c.injected.id(), 0, 0, shBytes);
+    mInjectedBoxes = mBoxes;
 }
 
 void LPV::buildGeometry(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("lpv.geometry");
+    // The RSMs' surfels depend on what the injection does (keepsRSMWork): with nothing changed,
+    // their sums (blocking and albedo) are restored from the copies kept after the last run, and
+    // only the G-buffer's, which follow the camera, are added again.
+    const bool keepRSM = keepsRSMWork(ctx, mGeometryBoxes);
+    const GLsizeiptr cornerBytes = GLsizeiptr(corners(mResolution) * 16);
     for (auto& c : mCascadeData) {
-        clearBuffer(c.geometryRSM);
+        if (keepRSM) {
+            glCopyNamedBufferSubData(c.geometryRSMKept.id(), c.geometryRSM.id(), 0, 0, cornerBytes);
+            glCopyNamedBufferSubData(c.albedoKept.id(), c.albedo.id(), 0, 0, cornerBytes);
+        } else {
+            clearBuffer(c.geometryRSM);
+            clearBuffer(c.albedo);
+        }
         clearBuffer(c.geometryGBuffer);
-        clearBuffer(c.albedo);
     }
     // Bounces past the first reflect light at the geometry volume, occlusion or not.
     if (!ctx.settings.lpv.occlusion && ctx.settings.lpv.bounces <= 1) {
+        mGeometryBoxes.clear();
         const float zero[4] = {0, 0, 0, 0};
         for (auto& c : mCascadeData) {
             glClearTexImage(c.geometryRSMVolume.id(), 0, GL_RGBA, GL_FLOAT, zero);
@@ -347,22 +383,31 @@ void LPV::buildGeometry(const FrameContext& ctx) {
     }
     mGeometryProg.use();
     // Surfels from the RSMs.
-    for (const RSM& m : mRSMs) {
-        glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
-        glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindImageTexture(kLPVImageAlbedo, m.albedo.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
-        for (size_t k = 0; k < mBoxes.size(); ++k) {
-            if (!m.feeds(k)) continue;
-            LPVParams p{};
-            p.resolution = mResolution;
-            p.fromGBuffer = 0;
-            p.width = p.height = mRSMResolution;
-            p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
-            mBlock.set(p);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryRSM.id());
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, mCascadeData[k].albedo.id());
-            glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+    if (!keepRSM) {
+        for (const RSM& m : mRSMs) {
+            glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+            glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+            glBindImageTexture(kLPVImageAlbedo, m.albedo.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+            for (size_t k = 0; k < mBoxes.size(); ++k) {
+                if (!m.feeds(k)) continue;
+                LPVParams p{};
+                p.resolution = mResolution;
+                p.fromGBuffer = 0;
+                p.width = p.height = mRSMResolution;
+                p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
+                mBlock.set(p);
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryRSM.id());
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, mCascadeData[k].albedo.id());
+                glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+            }
         }
+        // The sums so far are the RSMs' alone: kept for the frames that change none of their inputs.
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        for (auto& c : mCascadeData) {
+            glCopyNamedBufferSubData(c.geometryRSM.id(), c.geometryRSMKept.id(), 0, 0, cornerBytes);
+            glCopyNamedBufferSubData(c.albedo.id(), c.albedoKept.id(), 0, 0, cornerBytes);
+        }
+        mGeometryBoxes = mBoxes;
     }
     // Surfels from the camera's G-buffer, subsampled to about 128 x 128 samples.
     int stride = std::max(1, std::max(ctx.width, ctx.height) / 128);

@@ -140,6 +140,8 @@ public:
     const std::vector<CascadeBox>& cascades() const { return mBoxes; }
     // RSMs drawn since creation (tests: static lights keep them).
     int rsmDrawCount() const { return mRSMDraws; }
+    // Injections run since creation (tests: unchanged RSMs and boxes restore the kept one).
+    int injectCount() const { return mInjects; }
 
     // One propagation step on SSBOs of 12 floats per cell (RGB x 4 SH coefficients): gathers
     // `src` into `dst` and adds `dst` to `accum`; `transmit` (8 floats per cell, from the geometry
@@ -162,6 +164,8 @@ private:
     };
     struct Cascade {
         gl::Buffer inject, ping, pong, gather, accum, geometryRSM, geometryGBuffer, albedo, transmit;
+        gl::Buffer injected;  // the last injection, kept (inject() restores it while nothing it depends on changed)
+        gl::Buffer geometryRSMKept, albedoKept;  // the RSMs' surfels' sums alone, kept alike (buildGeometry)
         gl::Texture shR, shG, shB, geometryRSMVolume, geometryGBufferVolume;
     };
 
@@ -184,10 +188,17 @@ private:
     size_t mRSMBytes = 0, mVolumeBytes = 0, mGeometryBytes = 0;
     uint64_t mRSMSceneId = 0;  // the scene the RSMs show
     int mRSMDraws = 0;
+    bool mRSMsChanged = true;                // this frame's renderRSMs drew a map (or redraws every one)
+    std::vector<CascadeBox> mInjectedBoxes;  // the boxes `injected` was made for; empty: none kept
+    std::vector<CascadeBox> mGeometryBoxes;  // and those geometryRSMKept and albedoKept were
+    int mInjects = 0;
     gl::Sampler mLinear;
 
     void allocate(const FrameSettings& fs, uint8_t changes);
     void renderRSMs(const FrameContext& ctx);
+    // Whether this frame may restore RSM-derived work kept for the boxes `keptFor`: static work is
+    // kept, no RSM was drawn (nor every one redrawn), and the cascades have not moved.
+    bool keepsRSMWork(const FrameContext& ctx, const std::vector<CascadeBox>& keptFor) const;
     void inject(const FrameContext& ctx);
     void buildGeometry(const FrameContext& ctx);
     void propagate(const FrameContext& ctx);
