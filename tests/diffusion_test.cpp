@@ -291,6 +291,38 @@ const Diffusion& diffusionOf(const Renderer& r) {
     return *d;
 }
 
+// Issue 17 item 4: the whole solve in one frame (iterationsPerFrame 0, the default) is held like
+// a spread one under static lights: later frames start no solve and show the pixels a fresh
+// renderer does, a camera move keeps it, a light change solves again, and keepStaticWork off
+// solves every frame.
+TEST_F(DiffusionGL, AWholeSolveIsHeldUnderStaticLights) {
+    Scene scene = makeBuiltinScene("cornell");
+    Preset p;
+    p.header.technique.name = "diffusion";
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    ASSERT_EQ(fs.diffusion.iterationsPerFrame, 0);
+    ASSERT_FALSE(fs.lights.empty());
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    EXPECT_EQ(diffusionOf(r).solveCount(), 1);
+    r.render(fs);
+    EXPECT_EQ(diffusionOf(r).solveCount(), 1) << "static lights: the solve is held";
+    FrameSettings moved = fs;
+    moved.camera.eye += glm::vec3(0.1f, 0.05f, 0.0f);
+    r.render(moved);
+    EXPECT_EQ(diffusionOf(r).solveCount(), 1) << "a camera move keeps it";
+    EXPECT_EQ(r.readHDR(), test::renderedAfresh(scene, moved)->readHDR()) << "the held solve gives a fresh one's pixels";
+    moved.lights[0].intensity *= 0.5f;
+    r.render(moved);
+    EXPECT_EQ(diffusionOf(r).solveCount(), 2) << "a light change solves again";
+    EXPECT_EQ(r.readHDR(), test::renderedAfresh(scene, moved)->readHDR());
+    moved.render.keepStaticWork = false;
+    r.render(moved);
+    r.render(moved);
+    EXPECT_EQ(diffusionOf(r).solveCount(), 4) << "keepStaticWork off: every frame";
+}
+
 // The occupancy of the renderer's diffusion grid, one bool per cell (x fastest).
 std::vector<bool> occupancy(const Renderer& r) {
     const Diffusion& d = diffusionOf(r);

@@ -119,11 +119,14 @@ void Diffusion::indirect(FrameContext& ctx) {
         }
     }
     shared::DiffusionParams p = params(fs);
-    // The solve: all iterations every frame (iterationsPerFrame 0), or iterationsPerFrame steps a
-    // frame until all are done, then held until a light, a setting, the scene or the size of the
-    // shadow maps the injection reads changes.
+    // The solve: all iterations in one frame (iterationsPerFrame 0), or iterationsPerFrame steps a
+    // frame, until all are done; then held until a light, a setting, the scene or the size of the
+    // shadow maps the injection reads changes. With render.keepStaticWork off, iterationsPerFrame
+    // 0 solves every frame.
     const DiffusionSettings& s = fs.diffusion;
-    const bool restart = s.iterationsPerFrame == 0 || ctx.changes != 0 || mStepsDone < 0 || ctx.shadowSize != mSolveShadowSize;
+    const bool restart = (s.iterationsPerFrame == 0 && !fs.render.keepStaticWork) || ctx.changes != 0 || mStepsDone < 0 ||
+                         ctx.shadowSize != mSolveShadowSize;
+    if (restart) ++mSolves;
     mSolveShadowSize = ctx.shadowSize;
     {
         auto pass = ctx.timer.scope("diffusion.inject");

@@ -38,7 +38,9 @@
 // that many steps a frame, the picture filling in over frames, and once all `iterations` are
 // done it is held (a frame then costs the shading alone) until ctx.changes reports a change of
 // a light or a setting, or the scene changes, which restarts it from injection. Camera moves
-// keep it. 0 solves everything every frame (fully dynamic lights and the default).
+// keep it. 0 (the default) solves everything in one frame and holds it the same way while
+// render.keepStaticWork is on (issue 17 item 4; the editor's steady state); with it off, every
+// frame solves again (fully dynamic lights, the benchmarks' everything-dynamic frame).
 // Voxelization modes (setting voxelization): VCT's one draw along each triangle's dominant axis,
 // grown for conservative rasterization, or seed 001's slicing: three draws, along x, y and z,
 // not grown, each fragment writing the one cell its depth falls in; the three merge into the
@@ -87,6 +89,8 @@ public:
     void resetBounceOrders(int res);
 
     int resolution() const { return mResolution; }
+    // Solves started (from injection) since creation (tests: a held solve starts none).
+    int solveCount() const { return mSolves; }
     const VoxelBox& box() const { return mBox; }
     // The accumulated light, 3 vec4 (R, G, B SH) per cell, and the volumes it was made with.
     const gl::Buffer& accumulated() const { return mAccum; }
@@ -121,6 +125,7 @@ private:
     size_t mVoxelBytes = 0, mBufferBytes = 0;
 
     int mStepsDone = -1;  // propagation steps of the current solve; -1: none started
+    int mSolves = 0;
     int mSolveShadowSize = 0;  // of the shadow maps its injection read
     void allocate(const FrameSettings& fs);
     void ensureOrderBuffers(int res);
