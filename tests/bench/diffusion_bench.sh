@@ -54,12 +54,15 @@ gather = 96 + 4 + 4 + 48 + 4
 print('bytes per cell-step: %d (empty cell), %d (occupied); seed 001: 104 floats = 416 bytes' % (emit + gather, emit + gather + 24 + 96))
 "
 for res in 32 64; do
-  step presets/diffusion_cornell.json diffusion.propagate diffusion.gridResolution diffusion.iterations $res 1 65 | summary "diffusion (seed 001)" $res
+  # keepStaticWork off: with it the last frame would hold the first frame's solve and propagate nothing.
+  step presets/diffusion_cornell.json diffusion.propagate diffusion.gridResolution diffusion.iterations $res 1 65 \
+    render.keepStaticWork=false | summary "diffusion (seed 001)" $res
   # One bounce, so a step is one propagation of the grid (LPV's default 2 bounces propagate twice).
   step presets/lpv_cornell.json lpv.propagate lpv.gridResolution lpv.propagationSteps $res 1 17 lpv.bounces=1 | summary "LPV (1 bounce)" $res
 done
 echo "seed 001 (GTX 285, quoted):    32^3: 2.8e-5 ms per voxel-step"
-# The quality each technique's Cornell preset buys (its defaults, so a frame rather than a step).
+# The quality each technique's Cornell preset buys (its defaults, so a frame rather than a step;
+# the steady frame: static lights, so diffusion holds its solve and LPV its injection).
 for preset in diffusion_cornell lpv_cornell; do
   if "$build/app/gi-render" presets/$preset.json --width 128 --height 96 --frames 2 --score --out "$out" >/dev/null 2>&1; then
     python3 -c "
