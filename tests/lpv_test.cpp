@@ -3,6 +3,7 @@
 // point lights through their cube RSM (energy, agreement with a spot, the path-traced reference).
 #include "common/light.h"
 #include "common/sh.h"
+#include "gi/gl/extensions.h"
 #include "gi/lpv/lpv.h"
 #include "gi/preset/preset.h"
 #include "gi/render/renderer.h"
@@ -10,6 +11,10 @@
 #include "test_util.h"
 
 #include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 
 namespace gi {
 namespace {
@@ -459,6 +464,35 @@ TEST_F(LPVGL, StaticRSMsAreKeptAndRedrawnWhenALightMoves) {
     r.render(moved);
     EXPECT_EQ(lpvOf(r)->rsmDrawCount(), 3 * maps) << "keepStaticWork off: every frame";
     EXPECT_EQ(lpvOf(r)->injectCount(), 3);
+}
+
+// Injection and the geometry volume add floats from many RSM texels into one cell: with
+// GL_NV_shader_atomic_float (llvmpipe has it) by atomicAdd, else by an atomicCompSwap loop.
+// Both give the same picture; GI_DISABLE_GL_EXTENSIONS forces the loop on a driver with the
+// extension.
+TEST_F(LPVGL, FloatAtomicsAddAsTheCompareAndSwapLoopDoes) {
+    Scene scene = makeBuiltinScene("cornell_lamp");  // an area light: a cube RSM crowding a 32^3 grid
+    Preset p;
+    p.header.technique.name = "lpv";
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    const std::string withExtension = gl::floatAtomicsDefine();
+    std::printf("driver: %s\n", withExtension.c_str());
+    std::vector<float> fast = test::renderedAfresh(scene, fs)->readIndirectRadiance();
+    ::setenv("GI_DISABLE_GL_EXTENSIONS", "GL_EXT_unrelated,GL_NV_shader_atomic_float", 1);
+    const std::string without = gl::floatAtomicsDefine();
+    std::vector<float> loop = test::renderedAfresh(scene, fs)->readIndirectRadiance();
+    ::unsetenv("GI_DISABLE_GL_EXTENSIONS");
+    EXPECT_EQ(without, "FLOAT_ATOMICS=0");
+    ASSERT_EQ(fast.size(), loop.size());
+    float peak = 0.0f, worst = 0.0f;
+    for (size_t i = 0; i < fast.size(); ++i) {
+        if (i % 4 == 3) continue;  // RGBA: alpha is 1
+        peak = std::max(peak, std::abs(loop[i]));
+        worst = std::max(worst, std::abs(fast[i] - loop[i]));
+    }
+    std::printf("indirect peak %.5f, largest difference %.3g\n", peak, worst);
+    EXPECT_GT(peak, 0.01f) << "the view holds indirect light";
+    EXPECT_LE(worst, 1e-5f * peak) << "the sums differ by more than the order of the adds can";
 }
 
 // A point light's cube RSM feeds every cascade and stays while the camera moves, but the boxes

@@ -3,6 +3,7 @@
 #include "common/light.h"
 #include "common/shared.h"
 #include "gi/gl/buffer_texture.h"
+#include "gi/gl/extensions.h"
 #include "gi/render/gpu_scene.h"
 #include "gi/render/lights.h"
 #include "gi/scene/camera.h"
@@ -87,8 +88,8 @@ std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& scene
 }
 
 LPV::LPV()
-    : mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}),
-      mGeometryProg("lpv.geometry", {{GL_COMPUTE_SHADER, "lpv/geometry.comp"}}),
+    : mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}, {gl::floatAtomicsDefine()}),
+      mGeometryProg("lpv.geometry", {{GL_COMPUTE_SHADER, "lpv/geometry.comp"}}, {gl::floatAtomicsDefine()}),
       mGeometryResolveProg("lpv.geometryResolve", {{GL_COMPUTE_SHADER, "lpv/geometry_resolve.comp"}}),
       mTransmitProg("lpv.transmit", {{GL_COMPUTE_SHADER, "lpv/transmit.comp"}}),
       mPropagateProg("lpv.propagate", {{GL_COMPUTE_SHADER, "lpv/propagate.comp"}}),
