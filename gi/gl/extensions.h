@@ -12,9 +12,9 @@ namespace gi::gl {
 bool hasExtension(const std::string& name);
 
 // "FLOAT_ATOMICS=1" where GL_NV_shader_atomic_float gives atomicAdd on floats in shader storage
-// (Mesa llvmpipe, NVIDIA), else "FLOAT_ATOMICS=0": a shader define for passes that add floats
-// from many invocations into one cell (LPV's injection and geometry volume), which otherwise
-// loop on atomicCompSwap.
+// (Mesa llvmpipe, NVIDIA), else "FLOAT_ATOMICS=0": the define common/atomic_float.glsl reads,
+// for passes that add floats from many invocations into one cell (LPV's injection and geometry
+// volume), which otherwise loop on atomicCompSwap.
 std::string floatAtomicsDefine();
 
 }  // namespace gi::gl

@@ -78,7 +78,7 @@ Renderer::Renderer()
       mViewProg(gl::fullscreenProgram("view", "render/view.frag")),
       mLightProgs{lightPassProgram(0), lightPassProgram(1), lightPassProgram(2)},
       mBlock(kRenderBlockName, kRenderBlockBinding),
-      mLightBlock("LightBlock", kLightPassBlockBinding),
+      mLightBlock(kLightPassBlockName, kLightPassBlockBinding),
       mGBufferProgs("gbuffer", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}}, {},
                     mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }),
       mGBufferOpaqueProgs("gbufferOpaque", {{GL_VERTEX_SHADER, "render/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "render/gbuffer.frag"}},
@@ -496,10 +496,10 @@ void Renderer::renderLighting(const FrameSettings& fs, const glm::mat4& viewProj
     glBindTextureUnit(kUnitShadow2D, 0);
     glBindTextureUnit(kUnitShadowCube, 0);
     glBindTextureUnit(kUnitShadowCubeDepth, 0);
+    mBlock.set(params);  // the same for every light: each light's own fields are in LightBlock
     for (size_t i = 0; i < fs.lights.size(); ++i) {
         const LightSettings& l = fs.lights[i];
         const ShadowMap& sm = mShadows[i];
-        mBlock.set(params);
         mLightBlock.set(mLightBuffer.withTriangles(i));
         const bool cube = light::cubeShadow(int(l.type));
         mLightProgs[lightProgram(l.type)].use();

@@ -3,15 +3,7 @@
 // samples sit on the LPV cell corners, half a cell off the LPV's cell centres. Each also adds its
 // diffuse albedo times its coverage, and its coverage, to the corner's albedo (bounce.comp reads
 // the ratio: the coverage-weighted mean albedo of the corner's surfels, both sources together).
-// FLOAT_ATOMICS (gi/gl/extensions.h): atomicAdd on floats where the driver has
-// GL_NV_shader_atomic_float (llvmpipe: 62 -> 10 ms for lpv_cornell_original's injection, the same
-// sums), else a loop on atomicCompSwap.
-#ifndef FLOAT_ATOMICS
-#define FLOAT_ATOMICS 0
-#endif
-#if FLOAT_ATOMICS
-#extension GL_NV_shader_atomic_float : require
-#endif
+#include "common/atomic_float.glsl"
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
@@ -23,34 +15,11 @@ layout(binding = kUnitAlbedo) uniform sampler2D uGAlbedo;
 layout(binding = kUnitNormal) uniform sampler2D uGNormal;
 layout(binding = kUnitMaterial) uniform sampler2D uGMaterial;
 layout(binding = kUnitDepth) uniform sampler2D uGDepth;
-#if FLOAT_ATOMICS
-layout(std430, binding = kLPVBufferGeometry) buffer Geometry { float geometry[]; };
-layout(std430, binding = kLPVBufferGeometryAlbedo) buffer GeometryAlbedo { float geometryAlbedo[]; };
+layout(std430, binding = kLPVBufferGeometry) buffer Geometry { GI_ATOMIC_FLOAT geometry[]; };
+layout(std430, binding = kLPVBufferGeometryAlbedo) buffer GeometryAlbedo { GI_ATOMIC_FLOAT geometryAlbedo[]; };
 
-void atomicAddFloat(int i, float v) { atomicAdd(geometry[i], v); }
-void atomicAddAlbedo(int i, float v) { atomicAdd(geometryAlbedo[i], v); }
-#else
-layout(std430, binding = kLPVBufferGeometry) buffer Geometry { uint geometry[]; };
-layout(std430, binding = kLPVBufferGeometryAlbedo) buffer GeometryAlbedo { uint geometryAlbedo[]; };
-
-void atomicAddFloat(int i, float v) {
-    uint seen = geometry[i];
-    while (true) {
-        uint prev = atomicCompSwap(geometry[i], seen, floatBitsToUint(uintBitsToFloat(seen) + v));
-        if (prev == seen) break;
-        seen = prev;
-    }
-}
-
-void atomicAddAlbedo(int i, float v) {
-    uint seen = geometryAlbedo[i];
-    while (true) {
-        uint prev = atomicCompSwap(geometryAlbedo[i], seen, floatBitsToUint(uintBitsToFloat(seen) + v));
-        if (prev == seen) break;
-        seen = prev;
-    }
-}
-#endif
+void atomicAddFloat(int i, float v) { GI_ATOMIC_ADD_FLOAT(geometry[i], v); }
+void atomicAddAlbedo(int i, float v) { GI_ATOMIC_ADD_FLOAT(geometryAlbedo[i], v); }
 
 void main() {
     vec3 p, n, albedo;

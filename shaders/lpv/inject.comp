@@ -4,15 +4,7 @@
 // area (rsm.frag), counted in units of the cell's face area: the volumes then hold intensity per
 // cell face, whose size does not grow or shrink with the scene's units (half floats hold it), and
 // shading reads radiance from them without dividing by the cell's area.
-// FLOAT_ATOMICS (gi/gl/extensions.h): atomicAdd on floats where the driver has
-// GL_NV_shader_atomic_float (llvmpipe: 62 -> 10 ms for lpv_cornell_original's injection, the same
-// sums), else a loop on atomicCompSwap.
-#ifndef FLOAT_ATOMICS
-#define FLOAT_ATOMICS 0
-#endif
-#if FLOAT_ATOMICS
-#extension GL_NV_shader_atomic_float : require
-#endif
+#include "common/atomic_float.glsl"
 #include "lpv/common.glsl"
 
 #include "common/shared.h"
@@ -20,22 +12,9 @@ layout(local_size_x = kGroup2D, local_size_y = kGroup2D) in;
 layout(binding = kLPVImageFlux, rgba16f) uniform readonly image2D uFlux;
 layout(binding = kLPVImageNormal, rgba16f) uniform readonly image2D uNormal;
 layout(binding = kLPVImagePosition, rgba32f) uniform readonly image2D uPosition;
-#if FLOAT_ATOMICS
-layout(std430, binding = kLPVBufferInject) buffer Grid { float grid[]; };
+layout(std430, binding = kLPVBufferInject) buffer Grid { GI_ATOMIC_FLOAT grid[]; };
 
-void atomicAddFloat(int i, float v) { atomicAdd(grid[i], v); }
-#else
-layout(std430, binding = kLPVBufferInject) buffer Grid { uint grid[]; };
-
-void atomicAddFloat(int i, float v) {
-    uint seen = grid[i];
-    while (true) {
-        uint prev = atomicCompSwap(grid[i], seen, floatBitsToUint(uintBitsToFloat(seen) + v));
-        if (prev == seen) break;
-        seen = prev;
-    }
-}
-#endif
+void atomicAddFloat(int i, float v) { GI_ATOMIC_ADD_FLOAT(grid[i], v); }
 
 void main() {
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);

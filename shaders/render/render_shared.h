@@ -70,6 +70,7 @@ struct RenderParams {
 
 #ifdef __cplusplus
 inline constexpr const char* kRenderBlockName = "RenderBlock";
+inline constexpr const char* kLightPassBlockName = "LightBlock";  // render/light.frag
 static_assert(offsetof(RenderParams, cameraPos) == 128 && offsetof(RenderParams, lightPos) == 144);
 static_assert(offsetof(RenderParams, toneOp) == 188 && offsetof(RenderParams, channelMask) == 192);
 static_assert(offsetof(RenderParams, pan) == 224 && offsetof(RenderParams, depthNear) == 256);
