@@ -50,7 +50,8 @@
 // Bounce orders: the light carries the flux-weighted mean number of reflections it has had
 // (1 for reflected direct light), shown per cell by the diffusion.bounces view.
 // Not here yet (issue 16): the sky. Light diffuses rather than travels straight:
-// seed 001's "n Y steps for n bounces" describes only the front of it.
+// seed 001's "n Y steps for n bounces" describes only the front of it, so the default
+// `iterations` is 128, not the seed's 64 for rooms (diffusion_settings.h gives the figures).
 #pragma once
 
 #include "diffusion/diffusion_shared.h"
