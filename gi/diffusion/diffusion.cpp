@@ -13,9 +13,9 @@ namespace gi {
 namespace {
 
 size_t cellsOf(int res) { return size_t(res) * size_t(res) * size_t(res); }
-// Light in flight twice (ping-pong), the accumulation: 3 vec4 each; outgoing faces: 6 vec4;
-// bounce orders in flight (twice) and accumulated: a float each.
-constexpr size_t kBufferBytesPerCell = (3 * 16) * 3 + 6 * 16 + 3 * 4;
+// Light in flight twice (ping-pong), the accumulation and its smoothed copy: 3 vec4 each;
+// outgoing faces: 6 vec4; bounce orders in flight (twice) and accumulated: a float each.
+constexpr size_t kBufferBytesPerCell = (3 * 16) * 4 + 6 * 16 + 3 * 4;
 constexpr size_t kViewBytesPerCell = 3 * 8;  // the RGBA16F views: accumulated, in flight, bounces
 // Cell-steps a second for the time budget: llvmpipe on two cores ran 32^3 x 64 steps in 0.48 s
 // (4.4e6/s); a GPU is far faster, so this refuses only what would stall a CPU renderer.
@@ -29,8 +29,9 @@ Diffusion::Diffusion()
       mGatherProg("diffusion.gather", {{GL_COMPUTE_SHADER, "diffusion/gather.comp"}}),
       mShadeProg("diffusion.shade", {{GL_COMPUTE_SHADER, "diffusion/shade.comp"}}),
       mResolveProg("diffusion.resolve", {{GL_COMPUTE_SHADER, "diffusion/resolve.comp"}}),
+      mSmoothProg("diffusion.smooth", {{GL_COMPUTE_SHADER, "diffusion/smooth.comp"}}),
       mBlock(shared::kDiffusionBlockName, shared::kDiffusionBlockBinding) {
-    for (gl::Program* p : {&mInitProg, &mEmitProg, &mGatherProg, &mShadeProg, &mResolveProg}) mBlock.requireIn(*p);
+    for (gl::Program* p : {&mInitProg, &mEmitProg, &mGatherProg, &mShadeProg, &mResolveProg, &mSmoothProg}) mBlock.requireIn(*p);
 }
 
 size_t Diffusion::estimateBytes(const FrameSettings& fs) {
@@ -54,6 +55,7 @@ void Diffusion::allocate(const FrameSettings& fs) {
     size_t cells = cellsOf(res);
     for (auto& b : mLight) b = gl::createBuffer(cells * 3 * 16, nullptr, 0);
     mAccum = gl::createBuffer(cells * 3 * 16, nullptr, 0);
+    mShaded = gl::createBuffer(cells * 3 * 16, nullptr, 0);
     mOutgoing = gl::createBuffer(cells * 6 * 16, nullptr, 0);
     ensureOrderBuffers(res);
     mVoxelBytes = mAlbedo.bytes() + mNormal.bytes() + mExitFront.bytes() + mExitBack.bytes() + mView.bytes() + mViewInFlight.bytes() +
@@ -139,9 +141,25 @@ void Diffusion::indirect(FrameContext& ctx) {
         for (int k = 0; k < steps; ++k, ++mStepsDone)
             propagateStep(mAlbedo.id(), mNormal.id(), mLight[mStepsDone % 2].id(), mLight[(mStepsDone + 1) % 2].id(), mOutgoing.id(),
                           mAccum.id(), res, s.bounceAlbedo);
+        // The accumulation changed (a restart clears it, steps add to it): smooth it again.
+        if (s.smoothing && (restart || steps > 0)) smooth(p);
     }
     shade(ctx, p);
     ctx.indirectWritten = true;
+}
+
+void Diffusion::smooth(const shared::DiffusionParams& p) {
+    mSmoothProg.use();
+    mBlock.set(p);
+    glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glTextureBuffer(mAccumView.id(), GL_RGBA32F, mAccum.id());
+    glTextureBuffer(mDestinationView.id(), GL_RGBA32F, mShaded.id());
+    glBindTextureUnit(shared::kDiffusionUnitSmoothSource, mAccumView.id());
+    glBindImageTexture(shared::kDiffusionImageSmoothDestination, mDestinationView.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl::dispatch3D(mResolution);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindTextureUnit(shared::kDiffusionUnitSmoothSource, 0);
 }
 
 void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p) {
@@ -176,7 +194,7 @@ void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
         glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(shared::kDiffusionImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glTextureBuffer(mAccumView.id(), GL_RGBA32F, mAccum.id());
+        glTextureBuffer(mAccumView.id(), GL_RGBA32F, ctx.settings.diffusion.smoothing ? mShaded.id() : mAccum.id());
         glBindTextureUnit(shared::kDiffusionUnitShadeAccum, mAccumView.id());
         glDispatchCompute(gl::groupCount(ctx.width, shared::kGroup2D), gl::groupCount(ctx.height, shared::kGroup2D), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -257,6 +275,7 @@ std::vector<VolumeMemory> Diffusion::volumeMemory() const {
             {"light", r + "3 x vec4 SH x 2 (ping-pong)", 2 * cells * 3 * 16},
             {"outgoing", r + "6 x vec4 (flux per face)", cells * 6 * 16},
             {"accumulated", r + "3 x vec4 SH", cells * 3 * 16},
+            {"shaded", r + "3 x vec4 SH (the accumulation smoothed over each surface)", cells * 3 * 16},
             {"bounceOrder", r + "float x 3 (in flight x 2, accumulated)", cells * 3 * 4},
             {"views", r + "RGBA16F x 3 (accumulated, in flight, bounces)", mView.bytes() + mViewInFlight.bytes() + mViewBounces.bytes()}};
 }
@@ -267,7 +286,7 @@ std::vector<std::string> Diffusion::passNames(const FrameSettings&) const {
 
 bool Diffusion::reloadShaders(std::string& log) {
     bool ok = mSurfaces.reloadShaders(log);
-    for (gl::Program* p : {&mInitProg, &mEmitProg, &mGatherProg, &mShadeProg, &mResolveProg})
+    for (gl::Program* p : {&mInitProg, &mEmitProg, &mGatherProg, &mShadeProg, &mResolveProg, &mSmoothProg})
         if (!p->reload()) {
             ok = false;
             log += p->log() + "\n";

@@ -42,6 +42,7 @@ struct DiffusionSettings {
     float intensity = 1.0f;        // scale of the indirect light
     float nudge = 0.0f;            // shading reads the grid this many cells along the pixel's normal (seed 001: none)
     DiffusionVoxelization voxelization = DiffusionVoxelization::Slicing;  // seed 001's; scores higher on unseen scenes (closing note)
+    bool smoothing = true;         // shading reads each surface cell's light averaged over the surface's neighbouring cells (smooth.comp)
 
     template <class V>
     void visit(V&& v) {
@@ -51,6 +52,7 @@ struct DiffusionSettings {
         v(bounceAlbedo, {"bounceAlbedo", "Albedo of the light a surface reflects: the voxel's own (voxel) or seed 001's 0.5 (half)"});
         v(intensity, {"intensity", "Scale of the indirect light", "", 0, 100});
         v(nudge, {"nudge", "Shading reads the grid this far along the pixel's normal (seed 001 has none)", "cells", 0, 2});
+        v(smoothing, forDevelopers({"smoothing", "Shading reads each surface cell's light averaged with its neighbours on the same surface, so tilted faces show no voxel stripes", ""}));
         v(voxelization, {"voxelization", "conservative: one draw, each triangle along its dominant axis, grown; slicing: seed 001's three axes, merged", "", 0, 0, Cost::Reallocate});
     }
 };

@@ -43,6 +43,11 @@ GI_CONST int kDiffusionImageStepOrderAccum = 5;        // gather: r32f
 // shade reads the accumulation through a buffer texture too (3 texels per cell), beside the
 // G-buffer's normal and depth (kUnitNormal, kUnitDepth).
 GI_CONST int kDiffusionUnitShadeAccum = 2;
+// smooth: the accumulation in (a buffer texture) and the shaded accumulation out (a buffer image).
+GI_CONST int kDiffusionUnitSmoothSource = 2;
+GI_CONST int kDiffusionImageSmoothDestination = 3;
+// smooth: neighbours on the same surface have mean normals within acos(this) (18 degrees) of the cell's.
+GI_CONST float kDiffusionSmoothMinCosine = 0.95;
 
 // The face transfer (seed 001 eq. 3.2.1-3.2.3, corrected, see propagate.glsl): the 2-band SH of
 // the indicator of the solid angle a cell's face subtends from its centre (2 pi / 3), towards
