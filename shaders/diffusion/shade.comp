@@ -23,14 +23,7 @@ layout(binding = kDiffusionImageIndirect, rgba16f) uniform writeonly image2D uIn
 // A buffer texture over the accumulation (lpv/propagate.comp says why not shader storage).
 layout(binding = kDiffusionUnitShadeAccum) uniform samplerBuffer uAccum;  // 3 texels (R, G, B) per cell
 
-// Whether light can reach occupied cell c: it has an empty face neighbour inside the grid.
-bool reachable(ivec3 c) {
-    for (int d = 0; d < 6; ++d) {
-        ivec3 n = c + kDirections[d];
-        if (insideGrid(n) && !occupied(imageLoad(uAlbedo, n).r)) return true;
-    }
-    return false;
-}
+#include "diffusion/reachable.glsl"
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);

@@ -17,15 +17,7 @@ layout(binding = kDiffusionImageNormal, r32ui) uniform readonly uimage3D uNormal
 layout(binding = kDiffusionUnitSmoothSource) uniform samplerBuffer uAccum;  // 3 texels (R, G, B) per cell
 layout(binding = kDiffusionImageSmoothDestination, rgba32f) uniform writeonly imageBuffer uSmoothed;
 
-// Whether light can reach occupied cell c: it has an empty face neighbour inside the grid
-// (shade.comp's test).
-bool reachable(ivec3 c) {
-    for (int d = 0; d < 6; ++d) {
-        ivec3 n = c + kDirections[d];
-        if (insideGrid(n) && !occupied(imageLoad(uAlbedo, n).r)) return true;
-    }
-    return false;
-}
+#include "diffusion/reachable.glsl"
 
 void main() {
     ivec3 cell = ivec3(gl_GlobalInvocationID);
