@@ -80,7 +80,12 @@
 //     grows behind it (P - N * half a cell) compared to in front (P + N * half a cell), the light
 //     mostly comes from the surface's own VPLs; it is scaled by front/back, blended by `damping`.
 // Known artefacts: light leaks through walls thinner than a cell (the geometry volume reduces
-// them), one-cell blur of the injected light, energy spreading with many steps, and
+// them, by an amount that depends on where the wall falls in its cell: the two-room scene's
+// closed room takes 3.5 % of the lit room's light at the scene's own alignment, up to 12.7 %
+// with the scene moved by a fraction of a cell, because shade's trilinear stencil reaches the
+// cell behind the wall's blocking layer; diffusion stayed under 2.5 % at every alignment tried,
+// DiffusionGL.TheClosedRoomStaysDarkWhereverTheWallFalls), one-cell blur of the injected light,
+// energy spreading with many steps, and
 // self-illumination (a lit floor brightens itself through its own VPLs and, with bounces, its
 // own reflection; damping reduces it). The accumulator counts light once for every step it
 // spends in a cell and diffusing light lingers near its source, so with more steps than cells a
