@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -271,6 +272,26 @@ TEST(MatrixReport, MarksTheBestCellOfEachTechniqueAndEscapes) {
     size_t points = 0;
     for (size_t at = svg.find("<circle cx"); at != std::string::npos; at = svg.find("<circle cx", at + 1)) ++points;
     EXPECT_EQ(points, 3u + 2u) << "three cells and two legend dots";
+}
+
+// A cell that costs nothing on the axis (technique none's GI passes) sits at the left edge of a
+// padded linear axis; the ms ticks start at 0, not below it (the report once read "-8.68").
+TEST(MatrixReport, NoTickNamesANegativeTime) {
+    std::vector<CellResult> r = {result("none", 0.80, 8), result("vct", 0.86, 41), result("diffusion", 0.84, 25)};
+    r[0].msGI = 0.0;
+    r[1].msGI = 30.0;
+    r[2].msGI = 15.0;
+    for (CostAxis axis : {CostAxis::GI, CostAxis::Frame}) {
+        std::string svg = paretoSVG(r, axis);
+        size_t ticks = 0;
+        for (size_t at = svg.find("text-anchor=\"middle\">"); at != std::string::npos; at = svg.find("text-anchor=\"middle\">", at + 1)) {
+            std::string label = svg.substr(at + 21, svg.find('<', at) - at - 21);
+            if (label.empty() || !(std::isdigit(static_cast<unsigned char>(label[0])) || label[0] == '-')) continue;  // the axis title
+            ++ticks;
+            EXPECT_NE(label[0], '-') << "tick " << label << (axis == CostAxis::GI ? " on the GI axis" : " on the frame axis");
+        }
+        EXPECT_EQ(ticks, 5u);
+    }
 }
 
 TEST(MatrixProcess, TimeoutsCrashesAndFailuresAreReportedNotThrown) {

@@ -131,10 +131,13 @@ std::string paretoSVG(const std::vector<CellResult>& results, CostAxis axis) {
          fmt("%.1f", H - bottom) + "\" stroke=\"#444\"/>";
     s += "<line x1=\"" + fmt("%.1f", left) + "\" y1=\"" + fmt("%.1f", top) + "\" x2=\"" + fmt("%.1f", left) + "\" y2=\"" +
          fmt("%.1f", H - bottom) + "\" stroke=\"#444\"/>";
+    // The ms ticks start at 0 on a linear axis whose padding reaches below it (a cell that costs
+    // nothing): no tick names a negative time.
+    const double tick0 = logX ? x0 : std::max(x0, 0.0);
     for (int k = 0; k <= 4; ++k) {
         double v = yMin + (yMax - yMin) * k / 4.0;
         s += "<text x=\"" + fmt("%.1f", left - 4) + "\" y=\"" + fmt("%.1f", Y(v) + 4) + "\" text-anchor=\"end\">" + fmt("%.3f", v) + "</text>";
-        double xv = x0 + (x1 - x0) * k / 4.0;
+        double xv = tick0 + (x1 - tick0) * k / 4.0;
         double ms = logX ? std::pow(10.0, xv) : xv;
         s += "<text x=\"" + fmt("%.1f", X(ms)) + "\" y=\"" + fmt("%.1f", H - bottom + 14) + "\" text-anchor=\"middle\">" +
              fmt(ms < 10 ? "%.2f" : "%.0f", ms) + "</text>";
