@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace gi {
 
@@ -320,6 +321,18 @@ bool LPV::keepsRSMWork(const FrameContext& ctx, const std::vector<CascadeBox>& k
     return true;
 }
 
+void LPV::dispatchPerTexel(const RSM& m, LPVParams p, const std::function<void(const Cascade&)>& bindTargets) {
+    p.resolution = mResolution;
+    p.width = p.height = mRSMResolution;
+    for (size_t k = 0; k < mBoxes.size(); ++k) {
+        if (!m.feeds(k)) continue;
+        p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
+        mBlock.set(p);
+        bindTargets(mCascadeData[k]);
+        glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
+    }
+}
+
 void LPV::inject(const FrameContext& ctx) {
     auto pass = ctx.timer.scope("lpv.inject");
     const LPVSettings& s = ctx.settings.lpv;
@@ -334,21 +347,13 @@ void LPV::inject(const FrameContext& ctx) {
     ++mInjects;
     for (auto& c : mCascadeData) clearBuffer(c.inject);
     mInjectProg.use();
+    LPVParams p{};
+    p.nudge = s.nudge;
     for (const RSM& m : mRSMs) {
         glBindImageTexture(kLPVImageFlux, m.flux.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        for (size_t k = 0; k < mBoxes.size(); ++k) {
-            if (!m.feeds(k)) continue;
-            LPVParams p{};
-            p.resolution = mResolution;
-            p.width = p.height = mRSMResolution;
-            p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
-            p.nudge = s.nudge;
-            mBlock.set(p);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferInject, mCascadeData[k].inject.id());
-            glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
-        }
+        dispatchPerTexel(m, p, [](const Cascade& c) { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferInject, c.inject.id()); });
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     for (auto& c : mCascadeData) glCopyNamedBufferSubData(c.inject.id(), c.injected.id(), 0, 0, shBytes);
@@ -385,22 +390,16 @@ void LPV::buildGeometry(const FrameContext& ctx) {
     mGeometryProg.use();
     // Surfels from the RSMs.
     if (!keepRSM) {
+        LPVParams p{};
+        p.fromGBuffer = 0;
         for (const RSM& m : mRSMs) {
             glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
             glBindImageTexture(kLPVImageAlbedo, m.albedo.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
-            for (size_t k = 0; k < mBoxes.size(); ++k) {
-                if (!m.feeds(k)) continue;
-                LPVParams p{};
-                p.resolution = mResolution;
-                p.fromGBuffer = 0;
-                p.width = p.height = mRSMResolution;
-                p.gridMinCell = glm::vec4(mBoxes[k].min, mBoxes[k].cellSize);
-                mBlock.set(p);
-                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, mCascadeData[k].geometryRSM.id());
-                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, mCascadeData[k].albedo.id());
-                glDispatchCompute(gl::groupCount(mRSMResolution, shared::kGroup2D), gl::groupCount(mRSMResolution, shared::kGroup2D), 1);
-            }
+            dispatchPerTexel(m, p, [](const Cascade& c) {
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, c.geometryRSM.id());
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, c.albedo.id());
+            });
         }
         // The sums so far are the RSMs' alone: kept for the frames that change none of their inputs.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -109,6 +109,8 @@
 
 #include <glm/glm.hpp>
 
+#include <functional>
+
 namespace gi {
 
 struct CascadeBox {
@@ -204,6 +206,10 @@ private:
     // Whether this frame may restore RSM-derived work kept for the boxes `keptFor`: static work is
     // kept, no RSM was drawn (nor every one redrawn), and the cascades have not moved.
     bool keepsRSMWork(const FrameContext& ctx, const std::vector<CascadeBox>& keptFor) const;
+    // One dispatch, a thread per texel of RSM m, for each cascade m feeds: p with the grid's
+    // resolution, the map's size and the cascade's box in the block, and bindTargets(cascade) for
+    // the buffers it adds to (inject, buildGeometry).
+    void dispatchPerTexel(const RSM& m, shared::LPVParams p, const std::function<void(const Cascade&)>& bindTargets);
     void inject(const FrameContext& ctx);
     void buildGeometry(const FrameContext& ctx);
     void propagate(const FrameContext& ctx);
