@@ -156,10 +156,13 @@ std::vector<uint32_t> readPacked(const gl::Texture& t) {
 }
 
 // Every mip texel is the mean of its 8 children (isotropic), and every anisotropic texel is the
-// mean over 4 child pairs of front + (1 - front.a) * back along its direction.
+// mean over 4 child pairs of front + (1 - front.a) * back along its direction. Without face sides,
+// so that the atlas's mip 0 is the base level copied (with them it holds the sides, whose mips
+// the same composite builds; the centroid volume is checked below).
 TEST_F(VCTGL, MipsAreConsistent) {
     Scene scene = makeBuiltinScene("cornell");
     FrameSettings fs = cornellFrame(scene, 32);
+    fs.vct.faceSides = false;
     Renderer r;
     r.setScene(scene);
     r.render(fs);
@@ -238,6 +241,53 @@ TEST_F(VCTGL, MipsAreConsistent) {
             EXPECT_LT(worst, 2e-3) << "anisotropic direction " << d << " mip " << level;
             EXPECT_GT(largest, 0.01) << "anisotropic direction " << d << " mip " << level << " is empty";
         }
+    }
+}
+
+// Face sides' centroid volume (resolve.comp): at mip 0 each occupied voxel's centre in voxels
+// times its opacity (1) and the opacity, 0 elsewhere; each mip above the mean of its 8 children,
+// so a texel's rgb / a is the mean position of the voxels it holds.
+TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheVoxels) {
+    Scene scene = makeBuiltinScene("cornell");
+    FrameSettings fs = cornellFrame(scene, 32);
+    fs.vct.faceSides = true;
+    Renderer r;
+    r.setScene(scene);
+    r.render(fs);
+    const VCT& v = vctOf(r);
+    int res = v.resolution();
+    const gl::Texture& centroid = v.centroidVolume();
+    ASSERT_EQ(centroid.width(), res);
+    auto idx = [](int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; };
+    std::vector<float> opacity = readRGBA(v.levels()[0].radiance, 0), fine = readRGBA(centroid, 0);
+    double worst = 0;
+    size_t occupied = 0;
+    for (int z = 0; z < res; ++z)
+        for (int y = 0; y < res; ++y)
+            for (int x = 0; x < res; ++x) {
+                float a = opacity[idx(res, x, y, z) + 3];
+                occupied += a > 0.5f;
+                glm::vec4 expected(glm::vec3(x, y, z) + 0.5f, 1.0f);
+                expected *= a;
+                for (int c = 0; c < 4; ++c) worst = std::max(worst, double(std::abs(fine[idx(res, x, y, z) + size_t(c)] - expected[c])));
+            }
+    EXPECT_GT(occupied, size_t(res * res * 4)) << "the cornell box's six walls are voxelized";
+    EXPECT_LT(worst, 0.02) << "mip 0: the voxel centre times the opacity (fp16 storage)";
+    for (int level = 1; level < vctMipCount(res); ++level) {
+        std::vector<float> coarse = readRGBA(centroid, level);
+        int n = res >> level;
+        double worstMip = 0;
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    for (int c = 0; c < 4; ++c) {
+                        double mean = 0;
+                        for (int k = 0; k < 8; ++k) mean += fine[idx(2 * n, 2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2)) + c];
+                        mean /= 8.0;
+                        worstMip = std::max(worstMip, std::abs(coarse[idx(n, x, y, z) + c] - mean) / std::max(1.0, std::abs(mean)));
+                    }
+        EXPECT_LT(worstMip, 2e-3) << "mip " << level;
+        fine = coarse;
     }
 }
 
@@ -358,9 +408,11 @@ TEST_F(VCTGL, ToroidalUpdateEqualsFullVoxelization) {
     }
 }
 
-// A floor lit only by a large white panel above it: without a nudge the cones start inside
-// the floor's own voxels and are blocked by them; with the nudge they reach the panel and the
-// floor receives what the panel's underside sends it. The underside is lit from below, as the
+// A floor lit only by a large white panel above it: without face sides and without a nudge the
+// cones start inside the floor's own voxels and are blocked by them; with the nudge they reach
+// the panel and the floor receives what the panel's underside sends it. With face sides a
+// sample drops what lies in the receiver's own plane (trace.glsl), so the floor gathers the
+// panel's light at any nudge. The underside is lit from below, as the
 // reference would need it to be to light the floor: a spot 0.1 above the floor's centre (1.5
 // voxels, so the floor's voxel centres lie behind it too) points straight up (outer cone 89
 // degrees, so the floor stays unlit, and no shadow map, which a cone that wide could not have).
@@ -438,6 +490,16 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
     // samples a little.
     EXPECT_GT(lit[3] / expected, 0.75);
     EXPECT_LT(lit[3] / expected, 1.25);
+    fs.vct.faceSides = true;
+    for (float nudge : {0.0f, 1.0f, 2.0f, 3.0f, 4.0f}) {
+        fs.vct.nudge = nudge;
+        double sides = test::meanIndirect(r, fs);
+        std::printf("face sides: floor indirect at nudge %.0f: %.4f (%.0f %% of the analytic %.4f)\n", nudge, sides,
+                    100.0 * sides / expected, expected);
+        // What moves it (76-112 %) is where the samples fall on the one-voxel panel 16 voxels away.
+        EXPECT_GT(sides / expected, 0.7) << "nudge " << nudge << ": the floor's own plane blocks nothing";
+        EXPECT_LT(sides / expected, 1.25) << "nudge " << nudge;
+    }
 }
 
 // The sky through the cones (issue 13 item 2): an open floor under a constant environment of
@@ -472,15 +534,16 @@ TEST_F(VCTGL, ConesThatEndUnoccludedSeeTheSky) {
     EXPECT_LT(inside, 0.05 * none) << "no sky inside a closed box";
 }
 
-// The two-room scene: SH voxels radiate from the lit side only, so less light reaches the closed
-// room than with isotropic voxels (which glow on both sides of the thin wall). With the defaults
-// the closed room takes 22 % of the lit room's indirect light (printed; issue 13's bound is 5 %,
-// not met). Where it comes from, measured by zeroing the radiance (not the opacity) of voxel
-// columns: the shared wall lies on a voxel boundary and is voxelized into column 32, on the dark
-// side; that voxel alone, showing its lit face to the dark room, gives 68 % of the leak, and with
-// columns 31-32 zeroed 6 % remains, which the lit room's other voxels send through the coarse
-// mips whose texels straddle the wall. Cones cut to 0.5 m leak 35 %: the leak is near-field.
-// GI_TEST_IMAGES (test_util.h) writes the dark room's picture.
+// The two-room scene (issue 13 item 6): the closed room's indirect light over the lit room's.
+// With the defaults (isotropic content, the same in every direction) it is 35 %: the shared wall
+// lies on a voxel boundary and is voxelized into column 32, on the dark side, which then shows
+// its lit face to the dark room (68 % of that leak, measured by zeroing the radiance, not the
+// opacity, of voxel columns; with columns 31-32 zeroed 6 % remained, sent through the coarse mips
+// whose texels straddle the wall). Face sides (with bounceTail, as gi/vct/vct_settings.h
+// recommends them) keep it under issue 13's 5 % here, but not at every alignment of the wall
+// (the next test). SH voxels, which radiate each side as a hemisphere, put less than half as
+// much light in the dark room, but their lit room is darker still. GI_TEST_IMAGES
+// (test_util.h) writes the pictures.
 TEST_F(VCTGL, TwoRoomLeak) {
     Scene scene = test::twoRooms();
     Preset p;
@@ -490,28 +553,85 @@ TEST_F(VCTGL, TwoRoomLeak) {
     FrameSettings fs = frameSettings(p, scene, 96, 64);
     Renderer r;
     r.setScene(scene);
-    test::lookIntoClosedRoom(fs.camera);
-    double leakIsotropic = test::meanIndirect(r, fs);
-    fs.vct.sh = true;
-    double leakSH = test::meanIndirect(r, fs);
-    // The lit room, looking away from the shared wall (its surfaces there are lit indirectly).
-    fs.camera.eye = {-0.1f, 1.0f, 0.0f};
-    fs.camera.target = {-2.0f, 0.8f, 0.0f};
-    double litRoom = test::meanIndirect(r, fs);
-    fs.vct.sh = false;
-    double litRoomDefault = test::meanIndirect(r, fs);
-    // vct.faceSides: each face's light on its own side of the wall.
+    double dark = 0.0;
+    auto leak = [&](const char* label) {
+        test::lookIntoClosedRoom(fs.camera);
+        dark = test::meanIndirect(r, fs);
+        // The lit room, looking away from the shared wall (its surfaces there are lit indirectly).
+        fs.camera.eye = {-0.1f, 1.0f, 0.0f};
+        fs.camera.target = {-2.0f, 0.8f, 0.0f};
+        double lit = test::meanIndirect(r, fs);
+        std::printf("%s: indirect in the dark room %.5f, in the lit room %.5f: leak %.1f %%\n", label, dark, lit, 100.0 * dark / lit);
+        EXPECT_GT(lit, 0.0) << label;
+        return dark / lit;
+    };
+    double defaults = leak("defaults");
+    double darkDefaults = dark;
     fs.vct.faceSides = true;
-    double litRoomSides = test::meanIndirect(r, fs);
-    test::lookIntoClosedRoom(fs.camera);
-    double leakSides = test::meanIndirect(r, fs);
-    std::printf("indirect in the dark room: isotropic %.5f, SH %.5f, face sides %.5f; lit room: SH %.5f, default %.5f, face sides %.5f "
-                "(leak with the defaults %.1f %%, with face sides %.1f %%)\n",
-                leakIsotropic, leakSH, leakSides, litRoom, litRoomDefault, litRoomSides, 100.0 * leakIsotropic / litRoomDefault,
-                100.0 * leakSides / litRoomSides);
-    EXPECT_GT(litRoom, 0.0);
-    EXPECT_LT(leakSH, 0.5 * leakIsotropic) << "SH voxels should cut the leak at least in half";
-    EXPECT_LT(leakSides, 0.05 * litRoomSides) << "face sides: issue 13's leak bound";
+    fs.vct.bounceTail = true;
+    double sides = leak("face sides and bounce tail");
+    EXPECT_LT(sides, 0.05) << "issue 13's leak bound, with face sides";
+    EXPECT_LT(sides, 0.25 * defaults);
+    fs.vct.faceSides = false;
+    fs.vct.bounceTail = false;
+    fs.vct.sh = true;
+    leak("SH voxels");
+    EXPECT_LT(dark, 0.5 * darkDefaults) << "SH voxels should put less than half the light of isotropic content in the dark room";
+}
+
+// The same at every alignment of the shared wall in the grid: the scene moved by 0, 0.25, 0.5
+// and 0.75 of a voxel along x under a grid that stays put (two tiny black quads two voxels
+// outside the rooms fix the bounds), as DiffusionGL.TheClosedRoomStaysDarkWhereverTheWallFalls
+// does. Face sides leak 6.3, 25.5, 24.2 and 21.3 %, the defaults 38.8, 60.7, 57.3 and 53.1 %
+// (issue 13's 5 % is not met at any of them). Away from a voxel boundary the wall shares its
+// voxel column with pieces of the floor, ceiling and side walls from both rooms, whose mean light
+// that column then shows to both, and a one-voxel wall lets part of a cone through between its
+// samples (a two-voxel wall, kVCTSideMargin 0.5, leaked 6.2-18.6 % but cost vct_sponza 0.033 SSIM).
+TEST_F(VCTGL, FaceSidesCutTheLeakWhereverTheWallFalls) {
+    const Scene rooms = test::twoRooms();
+    Preset p;
+    p.header.technique.name = "vct";
+    p.vct.specularCone = false;
+    const glm::vec3 size = rooms.bounds.max - rooms.bounds.min;
+    const float margin = 2.0f * std::max(size.x, std::max(size.y, size.z)) / float(p.vct.gridResolution);
+    for (float shift : {0.0f, 0.25f, 0.5f, 0.75f}) {
+        Scene scene = rooms;
+        const size_t moved = scene.vertices.size();
+        MeshBuilder b(scene);
+        int anchor = b.material("anchor", glm::vec3(0.0f), 1.0f);
+        b.quad(anchor, rooms.bounds.min - glm::vec3(margin), {1e-3f, 0, 0}, {0, 1e-3f, 0});
+        b.quad(anchor, rooms.bounds.max + glm::vec3(margin), {-1e-3f, 0, 0}, {0, -1e-3f, 0});
+        scene.finalize();
+        FrameSettings fs = frameSettings(p, scene, 96, 64);
+        Renderer r;
+        r.setScene(scene);
+        r.render(fs);
+        const VoxelBox box = vctOf(r).levels()[0].box;
+        const glm::vec3 offset(shift * box.cellSize, 0.0f, 0.0f);
+        for (size_t i = 0; i < moved; ++i) scene.vertices[i].position += offset;
+        for (LightSettings& l : scene.lights) l.position += offset;
+        scene.finalize();
+        r.setScene(scene);
+        double leak[2];
+        for (int sides = 0; sides < 2; ++sides) {
+            fs = frameSettings(p, scene, 96, 64);
+            fs.vct.faceSides = fs.vct.bounceTail = sides == 1;
+            test::lookIntoClosedRoom(fs.camera);
+            fs.camera.eye += offset;
+            fs.camera.target += offset;
+            double dark = test::meanIndirect(r, fs);
+            ASSERT_NEAR(vctOf(r).levels()[0].box.cellSize, box.cellSize, 1e-6f) << "the anchors hold the grid";
+            ASSERT_NEAR(vctOf(r).levels()[0].box.min.x, box.min.x, 1e-5f) << "the anchors hold the grid";
+            fs.camera.eye = glm::vec3(-0.1f, 1.0f, 0.0f) + offset;
+            fs.camera.target = glm::vec3(-2.0f, 0.8f, 0.0f) + offset;
+            double lit = test::meanIndirect(r, fs);
+            ASSERT_GT(lit, 0.0);
+            leak[sides] = dark / lit;
+        }
+        std::printf("wall at voxel x %.2f: leak %.1f %% with the defaults, %.1f %% with face sides\n",
+                    (offset.x - box.min.x) / box.cellSize, 100.0 * leak[0], 100.0 * leak[1]);
+        EXPECT_LT(leak[1], 0.5 * leak[0]) << "wall moved " << shift << " voxel";
+    }
 }
 
 // Shift invariance (issue 13 item 5): the cornell box, its light and the camera moved together
@@ -670,6 +790,9 @@ TEST_F(VCTGL, TraceCountsItsWork) {
     EXPECT_GT(shortCones["samplesPerCone"], 0.0);
     EXPECT_LT(shortCones["samplesPerCone"], 0.8 * base["samplesPerCone"]);
     fs.vct.maxDistance = 0.0f;
+    fs.vct.faceSides = true;
+    EXPECT_EQ(work("face sides")["textureCallsPerSample"], 7.0) << "three directions from the atlas and from its coverage, and the centroid";
+    fs.vct.faceSides = false;
     fs.vct.anisotropic = false;
     EXPECT_EQ(work("isotropic")["textureCallsPerSample"], 1.0);
     fs.vct.sh = true;

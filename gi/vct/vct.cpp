@@ -101,7 +101,7 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     }
     if (anisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
     if (anisotropicOn(s) && s.faceSides) {
-        bytes += 6 * mipChain(2, res, mips);                            // the coverage atlas
+        bytes += 6 * mipChain(2, res, mips) + mipChain(8, res, mips);   // the coverage atlas, the centroids
         bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
         if (s.bounceCount > 1) bytes += 6 * voxels(res) * 8 * size_t(levelCountOf(s));  // and with the bounced light
     }
@@ -152,13 +152,15 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     mAniso = gl::Texture();
     mAnisoCoverage = gl::Texture();
     for (auto& t : mSH) t = gl::Texture();
+    mCentroid = gl::Texture();
     if (mAnisotropic) {
         mAniso = gl::Texture::create3D(GL_RGBA16F, 6 * r, r, r, mMipCount);
         mRadianceBytes += mAniso.bytes();
     }
     if (mFaceSides) {
         mAnisoCoverage = gl::Texture::create3D(GL_R16F, 6 * r, r, r, mMipCount);
-        mRadianceBytes += mAnisoCoverage.bytes();
+        mCentroid = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
+        mRadianceBytes += mAnisoCoverage.bytes() + mCentroid.bytes();
     }
     if (mSHVoxels)
         for (auto& t : mSH) {
@@ -259,6 +261,7 @@ void VCT::bindVoxelImages(const Level& l) const {
 void VCT::resolve(Level& level, bool bounced) {
     vct::VCTParams p = gridParams(level);
     p.sh = mSHVoxels ? 1 : 0;
+    p.sides = mFaceSides ? 1 : 0;
     mResolveProg.use();
     mBlock.set(p);
     glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
@@ -273,6 +276,7 @@ void VCT::resolve(Level& level, bool bounced) {
         glBindImageTexture(vct::kVCTImageSHG, mSH[1].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glBindImageTexture(vct::kVCTImageSHB, mSH[2].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
+    if (mFaceSides) glBindImageTexture(vct::kVCTImageCentroid, mCentroid.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl::dispatch3D(mResolution);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -309,6 +313,8 @@ void VCT::buildMips(bool bounced) {
     if (mSHVoxels)
         for (auto& t : mSH)
             for (int m = 1; m < mMipCount; ++m) level(t, m - 1, t, m, -1, mResolution >> m, 0, 0);
+    if (mFaceSides)
+        for (int m = 1; m < mMipCount; ++m) level(mCentroid, m - 1, mCentroid, m, -1, mResolution >> m, 0, 0);
     if (mAnisotropic) {
         // Mip 0 is level 0 (its sides with vct.faceSides), the rest from the mip below, each with
         // its coverage (mip.comp).
@@ -335,6 +341,8 @@ void VCT::bindRadiance() const {
     glBindSampler(GLuint(vct::kVCTUnitAniso), mLinear.id());
     glBindSampler(GLuint(vct::kVCTUnitAnisoCoverage), mLinear.id());
     glBindTextureUnit(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoCoverage.id());
+    glBindSampler(GLuint(vct::kVCTUnitCentroid), mLinear.id());
+    glBindTextureUnit(GLuint(vct::kVCTUnitCentroid), mCentroid.id());
     for (int c = 0; c < 3; ++c) {
         glBindTextureUnit(GLuint(vct::kVCTUnitSH + c), mSH[size_t(c)].id());
         glBindSampler(GLuint(vct::kVCTUnitSH + c), mLinear.id());
@@ -401,6 +409,7 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
             setConeParams(p, s);
             // Start at least a voxel diagonal out so a voxel does not gather its own light.
             p.nudge = std::max(s.nudge, 1.0f);
+            p.gridMin.w = s.bounceTail && b + 1 == s.bounceCount ? 1.0f : 0.0f;
             mBlock.set(p);
             bindVoxelImages(l);
             glBindImageTexture(vct::kVCTImageBouncedFront, l.bouncedFront.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kExitFormat);
@@ -537,10 +546,18 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
         if (l.bouncedFront.bytes())
             v.push_back({"bouncedRadiance" + s, r + "R11F_G11F_B10F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});
         v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});
+        if (l.sides.bytes()) {
+            v.push_back({"sides" + s, r + "R32UI x 6 (normal + count per side)", l.sides.bytes()});
+            v.push_back({"sidesRadiance" + s, r + "RGBA16F x 6", l.sidesRadiance.bytes() + l.sidesBounced.bytes()});
+        }
     }
     if (mAnisotropic)
         v.push_back({"anisotropic", r + "RGBA16F x 6 (one atlas)" + mips,
                      mAniso.bytes()});
+    if (mFaceSides) {
+        v.push_back({"coverage", r + "R16F x 6 (one atlas)" + mips, mAnisoCoverage.bytes()});
+        v.push_back({"centroid", r + "RGBA16F" + mips, mCentroid.bytes()});
+    }
     if (mSHVoxels) v.push_back({"sh", r + "RGBA16F x 3" + mips, 3 * mSH[0].bytes()});
     if (mLowIndirect.bytes())
         v.push_back({"traceTargets", std::to_string(mLowIndirect.width()) + "x" + std::to_string(mLowIndirect.height()) + " RGBA16F x 2",

@@ -37,14 +37,18 @@
 // sides facing back along each direction, so a cone sees the mean radiance of the faces turned
 // towards it and nothing of a face turned away. A bounce adds to each side the light gathered
 // on the side of the voxel's mean normal it faces, times its coverage (bounce.comp writes
-// sidesBounced, which the atlas's mip 0 then reads). With the default two bounces the two-room
-// leak falls from 35.0 % to 4.3 %, but the shift test moves by up to 17 % and the Cornell
-// presets lose 0.04-0.07 SSIM (vct_cornell 0.812 -> 0.738, 128x96): a cone leaving a surface
-// reads, in the coarser of its two mips, the texel that holds that surface, whose face towards
-// the cone is the surface's unlit back, an opaque black occluder whose weight depends on where
-// the surface falls in the texel. Isotropic voxels read the surface's own light there instead
-// (the same error that shows its lit face through a thin wall), which happens to offset it. So
-// it stays off.
+// sidesBounced, which the atlas's mip 0 then reads). A sample picks the faces it sees by the
+// direction from the cone's apex to its texel's content, not by the cone's axis, and drops the
+// content in the receiver's own plane (trace.glsl; the centroid volume, resolve.comp, gives the
+// content's mean position at every mip): a 60-degree cone along a floor takes the floor below it
+// into its footprint, and by its axis it read the floor's unlit underside, an opaque black
+// occluder (vct_cornell 0.783 -> 0.829 SSIM at 128x96 with that change; the shift test's worst
+// +16.7 % -> +4.9 %). With bounceTail as well (the bounces left out, bounce.comp) vct_cornell
+// reaches 0.855 and the two-room leak 4.9 % (35.0 % with the defaults), but 6-25 % at other
+// alignments of the wall (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls), and the Cornell presets
+// and boxes stay 0.003-0.018 SSIM below the isotropic default, whose surfaces glow on both sides
+// (the light that leaks through thin walls also brightens closed boxes from inside). So it stays
+// off; a sample makes 7 texture calls instead of 3.
 //   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
 //      specular cone along the reflection gives radiance for the composite's split-sum weight;
 //      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With
@@ -175,6 +179,8 @@ public:
     // mip 0): one sampler, and a cone reads its three directions from the one texture.
     const gl::Texture& anisotropicAtlas() const { return mAniso; }
     const std::array<gl::Texture, 3>& shVolumes() const { return mSH; }
+    // faceSides: each voxel's centre (in voxels) times its opacity, and the opacity, with box-filtered mips.
+    const gl::Texture& centroidVolume() const { return mCentroid; }
     int resolution() const { return mResolution; }
     // Voxels written by the last clipmap update, per level (a full level counts res^3).
     const std::vector<size_t>& voxelizedVoxels() const { return mVoxelizedVoxels; }
@@ -194,6 +200,7 @@ private:
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
     gl::Texture mAnisoCoverage;  // R16F beside it: the facing coverage (mip.comp)
+    gl::Texture mCentroid;       // faceSides: RGBA16F, the mean position of the voxels' content with mips (resolve.comp)
     std::array<gl::Texture, 3> mSH;
     gl::Sampler mLinear, mRepeat;
     int mResolution = 0, mMipCount = 0;

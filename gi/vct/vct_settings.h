@@ -55,12 +55,22 @@ struct VCTSettings {
     // trace per lit voxel when the light changes (Sponza 64^3: about 0.7 s on llvmpipe), nothing
     // in the editor's steady state.
     int bounceCount = 2;
+    // The last bounce also stands for the bounces after it (bounce.comp): its gathered light is
+    // divided by 1 - albedo x the cones' opacity, the sum of the bounces a surface enclosed by
+    // surfaces like itself would still receive. No effect with one bounce. Off by default: with
+    // isotropic content it lifts the unseen Cornell boxes (Empty-White 0.734 -> 0.823 SSIM at
+    // 128x96) but over-brightens vct_cornell_original (3 bounces, 0.876 -> 0.839) and Sponza
+    // (0.809 -> 0.800), and it multiplies the two-room leak (35 -> 44 %); with face sides it
+    // brings their bounces to the reference's brightness (vct_cornell 0.829 -> 0.855).
+    bool bounceTail = false;
     bool anisotropic = true;          // six directional mip volumes instead of one (isotropic voxels only)
     bool sh = false;                  // store voxel radiance as 2-band SH per colour (direction-dependent)
     // Anisotropic voxels keep each face of a surface on its own side (gi/vct/vct.h, "Face
     // sides"): a thin wall no longer shows its lit face to the room behind it. Off by default:
-    // the two-room leak falls from 35 % to 4.3 %, but the shift test moves by up to 17 % (bound
-    // 5 %) and the Cornell presets lose 0.04-0.07 SSIM.
+    // with bounceTail the two-room leak falls from 35 % to 4.9 % where the test scene's wall falls,
+    // and to 6-25 % at the alignments VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls tries (39-61 %
+    // without), but the Cornell presets and boxes lose
+    // 0.003-0.018 SSIM and Sponza 0.008, and a cone sample makes 7 texture calls instead of 3.
     bool faceSides = false;
     bool specularCone = true;         // trace one cone along the reflection, aperture from roughness
     float specularApertureMin = 1.0f;   // specular cone aperture at roughness 0, degrees
@@ -86,8 +96,9 @@ struct VCTSettings {
         v(stepMultiplier, forDevelopers({"stepMultiplier", "Step length in cone diameters", "", 0.1, 4}));
         v(maxDistance, {"maxDistance", "Cone length (0: the grid's diagonal)", "m", 0, 1e5});
         v(bounceCount, {"bounceCount", "Light bounces stored in the voxels (2 or 3 re-inject traced light)", "", 1, 3});
+        v(bounceTail, {"bounceTail", "The last bounce also adds the bounces after it (1 / (1 - albedo x enclosure))", ""});
         v(anisotropic, forDevelopers({"anisotropic", "Six directional mip volumes (seed 003); isotropic voxels only", "", 0, 0, Cost::Reallocate | Cost::Recompile}));
-        v(faceSides, forDevelopers({"faceSides", "Anisotropic voxels keep each face's light on its own side (thin walls; experimental)", "", 0, 0, Cost::Reallocate | Cost::Recompile}));
+        v(faceSides, forDevelopers({"faceSides", "Anisotropic voxels keep each face's light on its own side (no leaks through thin walls)", "", 0, 0, Cost::Reallocate | Cost::Recompile}));
         v(sh, forDevelopers({"sh", "Voxel radiance as 2-band SH per colour (seed 000's VCT SH)", "", 0, 0, Cost::Reallocate | Cost::Recompile}));
         v(specularCone, {"specularCone", "Trace a specular cone along the reflection", ""});
         v(specularApertureMin, forDevelopers({"specularApertureMin", "Specular cone aperture at roughness 0", "deg", 0.5, 120}));

@@ -2,6 +2,7 @@
 // of its mean normal through the current radiance volumes (direct light plus the bounces so far)
 // and leaves its direct radiance plus albedo * E / pi (seed 000 re-injects the traced light; the
 // cones start one voxel diagonal out, more with a larger nudge, so a voxel does not light itself).
+// With vct.bounceTail the last bounce also adds the bounces after it (hemisphere() below).
 // resolve.comp and the mip pass then rebuild the traced volumes.
 #include "vct/trace.glsl"
 
@@ -21,13 +22,24 @@ layout(binding = kVCTImageSidesDirect, rgba16f) uniform readonly image3D uSidesD
 layout(binding = kVCTImageSidesBounced, rgba16f) uniform writeonly image3D uSidesBounced;  // what mip.comp reads next
 #endif
 
-vec3 hemisphere(vec3 p, vec3 n) {
+// E / pi gathered over the hemisphere around n. On the last bounce with vct.bounceTail
+// (uVCT.gridMin.w 1) it also stands for the bounces left out: the cones' opacity says how much
+// of the hemisphere surfaces fill (its enclosure e), and if those surfaces reflect like this one
+// (albedo rho, the assumption of Jimenez et al. 2016's multi-bounce fit for ambient occlusion)
+// and receive light like it, each further bounce multiplies the gathered light by rho e, so all
+// of them sum to E / (1 - rho e), capped at 1 / kVCTTailMinRemainder times E. A closed room of
+// albedo 0.8 then holds 5x, an open floor (e near 0) its own gathered light.
+vec3 hemisphere(vec3 p, vec3 n, float albedo) {
     mat3 frame = tangentFrame(n);
     vec3 e = vec3(0.0);
+    float enclosed = 0.0;
     for (int i = 0; i < uVCT.coneCount; ++i) {
         float occlusion;
-        e += uVCT.cones[i].w * traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, 0.0, occlusion).rgb;
+        vec4 c = traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, 0.0, occlusion);
+        e += uVCT.cones[i].w * c.rgb;
+        enclosed += uVCT.cones[i].w * c.a;
     }
+    if (uVCT.gridMin.w > 0.0) e /= max(1.0 - albedo * enclosed, kVCTTailMinRemainder);
     return e;
 }
 
@@ -42,7 +54,8 @@ void main() {
     vec3 n = length(nn) > 1e-3 ? normalize(nn) : vec3(0.0, 1.0, 0.0);
     vec3 p = voxelCentre(v);
     // E / pi on each side; the surface then leaves albedo * E / pi.
-    vec3 front = hemisphere(p, n), back = hemisphere(p, -n);
+    float rho = dot(albedo, vec3(0.2126, 0.7152, 0.0722));  // Rec. 709 luminance
+    vec3 front = hemisphere(p, n, rho), back = hemisphere(p, -n, rho);
     imageStore(uExitFront, t, imageLoad(uDirectFront, t) + vec4(albedo * front, 0.0));
     imageStore(uExitBack, t, imageLoad(uDirectBack, t) + vec4(albedo * back, 0.0));
 #if VCT_SIDES

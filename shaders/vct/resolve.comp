@@ -2,7 +2,10 @@
 // (inject.comp, plus traced indirect light after a bounce). Isotropic voxels store the sum of
 // both sides, premultiplied by the opacity (1 where anything was voxelized); SH voxels store each
 // side as a hemisphere of radiance around its normal (common.glsl shHemisphere), so a cone sees
-// the lit side only. Opacity stays in the isotropic volume's alpha in both cases.
+// the lit side only. Opacity stays in the isotropic volume's alpha in both cases. With face sides
+// (uVCT.sides) it also writes the centroid volume: each occupied voxel's centre in voxels times
+// its opacity, and the opacity, whose box-filtered mips give the mean position of what a texel
+// holds (trace.glsl reads it).
 #include "vct/common.glsl"
 
 #include "common/shared.h"
@@ -16,6 +19,7 @@ layout(binding = kVCTImageRadiance, rgba16f) uniform writeonly image3D uRadiance
 layout(binding = kVCTImageSHR, rgba16f) uniform writeonly image3D uSHR;
 layout(binding = kVCTImageSHG, rgba16f) uniform writeonly image3D uSHG;
 layout(binding = kVCTImageSHB, rgba16f) uniform writeonly image3D uSHB;
+layout(binding = kVCTImageCentroid, rgba16f) uniform writeonly image3D uCentroid;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -31,6 +35,7 @@ void main() {
         alpha = 1.0;
     }
     imageStore(uRadiance, t, vec4(front + back, alpha));
+    if (uVCT.sides != 0) imageStore(uCentroid, t, vec4((vec3(v) + 0.5) * alpha, alpha));
     if (uVCT.sh != 0) {
         vec4 hf = shHemisphere(n), hb = shHemisphere(-n);
         imageStore(uSHR, t, front.r * hf + back.r * hb);

@@ -40,6 +40,7 @@ layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
 layout(binding = kVCTUnitAniso) uniform sampler3D uAniso;  // +X -X +Y -Y +Z -Z side by side along x
 #if VCT_SIDES
 layout(binding = kVCTUnitAnisoCoverage) uniform sampler3D uAnisoCoverage;  // the atlas's facing coverage (mip.comp)
+layout(binding = kVCTUnitCentroid) uniform sampler3D uCentroid;  // mean position of the voxels' content (resolve.comp)
 #endif
 #endif
 #if VCT_SH
@@ -51,6 +52,8 @@ layout(binding = kVCTUnitSH + 2) uniform sampler3D uSHB;
 // Work counted for the screen trace's report (trace.comp sums them; bounce.comp leaves them
 // unread): cone steps taken and texture calls made, by this invocation.
 uint gVCTSamples = 0u, gVCTFetches = 0u;
+// The cone being marched: its apex and the receiver's normal there (traceCone sets them).
+vec3 gVCTApex = vec3(0.0), gVCTApexNormal = vec3(0.0, 1.0, 0.0);
 
 vec3 levelCoord(int k, vec3 p) {
     return (p - uVCT.levelMinCell[k].xyz) / (uVCT.levelMinCell[k].w * float(uVCT.resolution)) +
@@ -119,7 +122,30 @@ vec4 sampleLevel(int k, vec3 p, float lod, vec3 dir) {
     // whose condition may differ between the invocations it executes together (masked, not
     // skipped), so a separate read for lod < 1 (level 0's own volume, or a second atlas call)
     // costs every sample, taken or not.
+#if VCT_SIDES
+    // Face sides: which face of a surface the cone sees depends on where the surface lies from
+    // the apex, not on the cone's axis. A 60-degree cone along the floor, or slightly up,
+    // takes in the floor below it in its footprint; by the axis's signs it read the floor's
+    // unlit underside, opaque and black, where the path tracer sees the lit top. So the sample
+    // reads its texel's content as seen from the apex, along the direction to the content's
+    // centroid (the centroid volume's mips, resolve.comp), and drops the content that lies in
+    // the receiver's own plane (less than kVCTOwnPlaneStart voxels above it): a plane cannot
+    // occlude or light a cone that leaves it.
+    vec4 content = textureLod(uCentroid, tc, lod);
+    gVCTFetches += 1u;
+    vec3 view = dir;
+    float keep = 1.0;
+    if (content.a > 1e-4) {
+        float voxel = uVCT.levelMinCell[0].w;
+        vec3 toContent = uVCT.levelMinCell[0].xyz + content.xyz / content.a * voxel - gVCTApex;
+        keep = clamp((dot(toContent, gVCTApexNormal) / voxel - kVCTOwnPlaneStart) / kVCTOwnPlaneRamp, 0.0, 1.0);
+        float length2 = dot(toContent, toContent);
+        if (length2 > 1e-12) view = toContent * inversesqrt(length2);
+    }
+    return keep * sampleAniso(tc, lod, view);
+#else
     return sampleAniso(tc, lod, dir);
+#endif
 #else
     return levelRadiance(k, tc, lod);
 #endif
@@ -164,6 +190,8 @@ bool sampleVoxels(vec3 p, float diameter, float step, vec3 dir, out vec4 s) {
 vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, float occlusionDistance,
                out float occlusion) {
     float voxel = uVCT.levelMinCell[0].w;
+    gVCTApex = apex;
+    gVCTApexNormal = n;
     float t = vctConeStart(uVCT.nudge, voxel, dot(n, dir));
     vec4 acc = vec4(0.0);
     occlusion = 0.0;
