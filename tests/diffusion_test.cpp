@@ -252,41 +252,25 @@ TEST_F(DiffusionGL, TheClosedRoomStaysDark) {
 const Diffusion& diffusionOf(const Renderer& r);
 
 TEST_F(DiffusionGL, TheClosedRoomStaysDarkWhereverTheWallFalls) {
-    const Scene rooms = test::twoRooms();
     Preset p;
     p.header.technique.name = "diffusion";
-    const glm::vec3 size = rooms.bounds.max - rooms.bounds.min;
-    const float margin = 2.0f * std::max(size.x, std::max(size.y, size.z)) / float(p.diffusion.gridResolution);
+    const glm::vec3 size = test::twoRooms().bounds.max - test::twoRooms().bounds.min;
+    const test::AnchoredRooms rooms = test::anchoredTwoRooms(2.0f * std::max(size.x, std::max(size.y, size.z)) / float(p.diffusion.gridResolution));
     for (float shift : {0.0f, 0.25f, 0.5f, 0.75f}) {
-        Scene scene = rooms;
-        const size_t moved = scene.vertices.size();
-        MeshBuilder b(scene);
-        int anchor = b.material("anchor", glm::vec3(0.0f), 1.0f);
-        b.quad(anchor, rooms.bounds.min - glm::vec3(margin), {1e-3f, 0, 0}, {0, 1e-3f, 0});
-        b.quad(anchor, rooms.bounds.max + glm::vec3(margin), {-1e-3f, 0, 0}, {0, -1e-3f, 0});
-        scene.finalize();
-        FrameSettings fs = frameSettings(p, scene, 96, 64);
+        FrameSettings fs = frameSettings(p, rooms.scene, 96, 64);
         Renderer r;
-        r.setScene(scene);
+        r.setScene(rooms.scene);
         r.render(fs);
         const float cell = diffusionOf(r).box().cellSize;
         const glm::vec3 offset(shift * cell, 0.0f, 0.0f);
-        for (size_t i = 0; i < moved; ++i) scene.vertices[i].position += offset;
-        for (LightSettings& l : scene.lights) l.position += offset;
-        scene.finalize();
-        fs = frameSettings(p, scene, 96, 64);
+        Scene scene = rooms.moved(offset);
         r.setScene(scene);
-        test::lookIntoClosedRoom(fs.camera);
-        fs.camera.eye += offset;
-        fs.camera.target += offset;
-        double dark = test::meanIndirect(r, fs);
+        test::RoomsIndirect light = test::twoRoomsIndirect(r, frameSettings(p, scene, 96, 64), offset);
         ASSERT_NEAR(diffusionOf(r).box().cellSize, cell, 1e-6f) << "the anchors hold the grid";
-        fs.camera.eye = glm::vec3(-0.1f, 1.0f, 0.0f) + offset;
-        fs.camera.target = glm::vec3(-2.0f, 0.8f, 0.0f) + offset;
-        double lit = test::meanIndirect(r, fs);
-        std::printf("wall moved %.2f cell: lit room %.5f, closed room %.6f (%.2f %%)\n", shift, lit, dark, 100.0 * dark / lit);
-        EXPECT_GT(lit, 0.0);
-        EXPECT_LT(dark, 0.05 * lit) << "wall moved " << shift << " cell";
+        std::printf("wall moved %.2f cell: lit room %.5f, closed room %.6f (%.2f %%)\n", shift, light.lit, light.closed,
+                    100.0 * light.closed / light.lit);
+        EXPECT_GT(light.lit, 0.0);
+        EXPECT_LT(light.closed, 0.05 * light.lit) << "wall moved " << shift << " cell";
     }
 }
 

@@ -48,6 +48,39 @@ void lookIntoClosedRoom(CameraSettings& camera) {
     camera.fovY = closed.fovY;
 }
 
+AnchoredRooms anchoredTwoRooms(float margin) {
+    AnchoredRooms a;
+    a.scene = twoRooms();
+    a.roomVertices = a.scene.vertices.size();
+    const Bounds bounds = a.scene.bounds;
+    MeshBuilder b(a.scene);
+    int anchor = b.material("anchor", glm::vec3(0.0f), 1.0f);
+    b.quad(anchor, bounds.min - glm::vec3(margin), {1e-3f, 0, 0}, {0, 1e-3f, 0});
+    b.quad(anchor, bounds.max + glm::vec3(margin), {-1e-3f, 0, 0}, {0, -1e-3f, 0});
+    a.scene.finalize();
+    return a;
+}
+
+Scene AnchoredRooms::moved(glm::vec3 offset) const {
+    Scene s = scene;
+    for (size_t i = 0; i < roomVertices; ++i) s.vertices[i].position += offset;
+    for (LightSettings& l : s.lights) l.position += offset;
+    s.finalize();
+    return s;
+}
+
+RoomsIndirect twoRoomsIndirect(Renderer& r, FrameSettings fs, glm::vec3 offset) {
+    RoomsIndirect result;
+    lookIntoClosedRoom(fs.camera);
+    fs.camera.eye += offset;
+    fs.camera.target += offset;
+    result.closed = meanIndirect(r, fs);
+    fs.camera.eye = glm::vec3(-0.1f, 1.0f, 0.0f) + offset;
+    fs.camera.target = glm::vec3(-2.0f, 0.8f, 0.0f) + offset;
+    result.lit = meanIndirect(r, fs);
+    return result;
+}
+
 Scene openFloor() {
     Scene s;
     MeshBuilder b(s);

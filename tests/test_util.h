@@ -31,6 +31,21 @@ Scene twoRooms();
 // Its closed room B seen from its outer wall (the scene's camera 1: eye, target, 70 degree
 // field of view): the view the leak tests average the indirect light of.
 void lookIntoClosedRoom(CameraSettings& camera);
+// The alignment leak tests: the two-room scene with two tiny black quads `margin` outside its
+// bounds after its own vertices, which hold a grid fitted to the bounds while the rooms move.
+struct AnchoredRooms {
+    Scene scene;
+    size_t roomVertices = 0;  // the rooms' vertices, before the anchors'
+    // The rooms and their light moved by offset; the anchors stay.
+    Scene moved(glm::vec3 offset) const;
+};
+AnchoredRooms anchoredTwoRooms(float margin);
+// The mean indirect light of the closed room seen from its outer wall (lookIntoClosedRoom) and of
+// the lit room looking away from the shared wall, both views moved by offset with the rooms.
+struct RoomsIndirect {
+    double closed = 0.0, lit = 0.0;
+};
+RoomsIndirect twoRoomsIndirect(Renderer& r, FrameSettings fs, glm::vec3 offset);
 // The sky tests: a 4 x 4 m floor of albedo 0.8 on its own, the same floor inside a closed box
 // 1 m high, and a frame of `technique` looking straight down at the floor's centre from 0.6 m,
 // lit only by a constant environment of radiance 1 (no light).

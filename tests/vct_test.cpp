@@ -149,6 +149,28 @@ std::vector<float> readRGBA(const gl::Texture& t, int level) {
     return v;
 }
 
+// Each mip of a res^3 RGBA volume above level 0 is the mean of its 8 children (fp16 storage).
+void expectBoxFilteredMips(const gl::Texture& t, int res, const char* what) {
+    auto idx = [](int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; };
+    std::vector<float> fine = readRGBA(t, 0);
+    for (int level = 1; level < vctMipCount(res); ++level) {
+        std::vector<float> coarse = readRGBA(t, level);
+        int n = res >> level;
+        double worst = 0;
+        for (int z = 0; z < n; ++z)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    for (int c = 0; c < 4; ++c) {
+                        double mean = 0;
+                        for (int k = 0; k < 8; ++k) mean += fine[idx(2 * n, 2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2)) + c];
+                        mean /= 8.0;
+                        worst = std::max(worst, std::abs(coarse[idx(n, x, y, z) + c] - mean) / std::max(1.0, std::abs(mean)));
+                    }
+        EXPECT_LT(worst, 2e-3) << what << " mip " << level;
+        fine = coarse;
+    }
+}
+
 std::vector<uint32_t> readPacked(const gl::Texture& t) {
     std::vector<uint32_t> v(size_t(t.width()) * t.height() * t.depth());
     glGetTextureImage(t.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(v.size() * 4), v.data());
@@ -174,23 +196,7 @@ TEST_F(VCTGL, MipsAreConsistent) {
     size_t occupied = 0;
     for (size_t i = 3; i < fine.size(); i += 4) occupied += fine[i] > 0.5f;
     EXPECT_GT(occupied, size_t(res * res * 4)) << "the cornell box's six walls are voxelized";
-    for (int level = 1; level < vctMipCount(res); ++level) {
-        std::vector<float> coarse = readRGBA(radiance, level);
-        int n = res >> level;
-        double worst = 0;
-        for (int z = 0; z < n; ++z)
-            for (int y = 0; y < n; ++y)
-                for (int x = 0; x < n; ++x)
-                    for (int c = 0; c < 4; ++c) {
-                        double mean = 0;
-                        for (int k = 0; k < 8; ++k) mean += fine[idx(2 * n, 2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2)) + c];
-                        mean /= 8.0;
-                        double e = std::abs(coarse[idx(n, x, y, z) + c] - mean) / std::max(1.0, std::abs(mean));
-                        worst = std::max(worst, e);
-                    }
-        EXPECT_LT(worst, 2e-3) << "mip " << level;  // fp16 storage
-        fine = coarse;
-    }
+    expectBoxFilteredMips(radiance, res, "radiance");
     // Anisotropic: the six directions side by side along x in one atlas (slab d starts at x = d n).
     // Its mip 0 is the base level in every slab; each mip above from the one below, for every
     // direction: along the direction, front + (1 - front.a) * back over the 4 child pairs, averaged.
@@ -273,22 +279,7 @@ TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheVoxels) {
             }
     EXPECT_GT(occupied, size_t(res * res * 4)) << "the cornell box's six walls are voxelized";
     EXPECT_LT(worst, 0.02) << "mip 0: the voxel centre times the opacity (fp16 storage)";
-    for (int level = 1; level < vctMipCount(res); ++level) {
-        std::vector<float> coarse = readRGBA(centroid, level);
-        int n = res >> level;
-        double worstMip = 0;
-        for (int z = 0; z < n; ++z)
-            for (int y = 0; y < n; ++y)
-                for (int x = 0; x < n; ++x)
-                    for (int c = 0; c < 4; ++c) {
-                        double mean = 0;
-                        for (int k = 0; k < 8; ++k) mean += fine[idx(2 * n, 2 * x + (k & 1), 2 * y + ((k >> 1) & 1), 2 * z + (k >> 2)) + c];
-                        mean /= 8.0;
-                        worstMip = std::max(worstMip, std::abs(coarse[idx(n, x, y, z) + c] - mean) / std::max(1.0, std::abs(mean)));
-                    }
-        EXPECT_LT(worstMip, 2e-3) << "mip " << level;
-        fine = coarse;
-    }
+    expectBoxFilteredMips(centroid, res, "centroid");
 }
 
 // The grid is static: a second frame with the same scene and grid does not voxelize again.
@@ -591,45 +582,28 @@ TEST_F(VCTGL, TwoRoomLeak) {
 // surface in two voxels) 6.4, 6.2, 10.3 and 18.6 % but cost vct_sponza 0.033 SSIM. Neither the
 // nudge (1, 2) nor a shorter step (0.5, 0.75) changed the leak by more than 4 points.
 TEST_F(VCTGL, FaceSidesCutTheLeakWhereverTheWallFalls) {
-    const Scene rooms = test::twoRooms();
     Preset p;
     p.header.technique.name = "vct";
     p.vct.specularCone = false;
-    const glm::vec3 size = rooms.bounds.max - rooms.bounds.min;
-    const float margin = 2.0f * std::max(size.x, std::max(size.y, size.z)) / float(p.vct.gridResolution);
+    const glm::vec3 size = test::twoRooms().bounds.max - test::twoRooms().bounds.min;
+    const test::AnchoredRooms rooms = test::anchoredTwoRooms(2.0f * std::max(size.x, std::max(size.y, size.z)) / float(p.vct.gridResolution));
     for (float shift : {0.0f, 0.25f, 0.5f, 0.75f}) {
-        Scene scene = rooms;
-        const size_t moved = scene.vertices.size();
-        MeshBuilder b(scene);
-        int anchor = b.material("anchor", glm::vec3(0.0f), 1.0f);
-        b.quad(anchor, rooms.bounds.min - glm::vec3(margin), {1e-3f, 0, 0}, {0, 1e-3f, 0});
-        b.quad(anchor, rooms.bounds.max + glm::vec3(margin), {-1e-3f, 0, 0}, {0, -1e-3f, 0});
-        scene.finalize();
-        FrameSettings fs = frameSettings(p, scene, 96, 64);
         Renderer r;
-        r.setScene(scene);
-        r.render(fs);
+        r.setScene(rooms.scene);
+        r.render(frameSettings(p, rooms.scene, 96, 64));
         const VoxelBox box = vctOf(r).levels()[0].box;
         const glm::vec3 offset(shift * box.cellSize, 0.0f, 0.0f);
-        for (size_t i = 0; i < moved; ++i) scene.vertices[i].position += offset;
-        for (LightSettings& l : scene.lights) l.position += offset;
-        scene.finalize();
+        Scene scene = rooms.moved(offset);
         r.setScene(scene);
         double leak[2];
         for (int sides = 0; sides < 2; ++sides) {
-            fs = frameSettings(p, scene, 96, 64);
+            FrameSettings fs = frameSettings(p, scene, 96, 64);
             fs.vct.faceSides = fs.vct.bounceTail = sides == 1;
-            test::lookIntoClosedRoom(fs.camera);
-            fs.camera.eye += offset;
-            fs.camera.target += offset;
-            double dark = test::meanIndirect(r, fs);
+            test::RoomsIndirect light = test::twoRoomsIndirect(r, fs, offset);
             ASSERT_NEAR(vctOf(r).levels()[0].box.cellSize, box.cellSize, 1e-6f) << "the anchors hold the grid";
             ASSERT_NEAR(vctOf(r).levels()[0].box.min.x, box.min.x, 1e-5f) << "the anchors hold the grid";
-            fs.camera.eye = glm::vec3(-0.1f, 1.0f, 0.0f) + offset;
-            fs.camera.target = glm::vec3(-2.0f, 0.8f, 0.0f) + offset;
-            double lit = test::meanIndirect(r, fs);
-            ASSERT_GT(lit, 0.0);
-            leak[sides] = dark / lit;
+            ASSERT_GT(light.lit, 0.0);
+            leak[sides] = light.closed / light.lit;
         }
         std::printf("wall at voxel x %.2f: leak %.1f %% with the defaults, %.1f %% with face sides\n",
                     (offset.x - box.min.x) / box.cellSize, 100.0 * leak[0], 100.0 * leak[1]);
