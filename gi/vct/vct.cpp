@@ -548,7 +548,7 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
         v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});
         if (l.sides.bytes()) {
             v.push_back({"sides" + s, r + "R32UI x 6 (normal + count per side)", l.sides.bytes()});
-            v.push_back({"sidesRadiance" + s, r + "RGBA16F x 6", l.sidesRadiance.bytes() + l.sidesBounced.bytes()});
+            v.push_back({"sidesRadiance" + s, r + "RGBA16F x 6 (direct, and with the bounced light)", l.sidesRadiance.bytes() + l.sidesBounced.bytes()});
         }
     }
     if (mAnisotropic)

@@ -44,8 +44,8 @@
 // into its footprint, and by its axis it read the floor's unlit underside, an opaque black
 // occluder (vct_cornell 0.783 -> 0.829 SSIM at 128x96 with that change; the shift test's worst
 // +16.7 % -> +5.2 %). With bounceTail as well (the bounces left out, bounce.comp) vct_cornell
-// reaches 0.855, the shift test +4.9 % and the two-room leak 4.9 % (35.0 % with the defaults), but 6-25 % at other
-// alignments of the wall (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls), and the Cornell presets
+// reaches 0.855, the shift test +4.9 % and the two-room leak 4.9 % (35.0 % with the defaults),
+// but 6-25 % at other alignments of the wall (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls), and the Cornell presets
 // and boxes stay 0.003-0.018 SSIM below the isotropic default, whose surfaces glow on both sides
 // (the light that leaks through thin walls also brightens closed boxes from inside). So it stays
 // off; a sample makes 7 texture calls instead of 3.
