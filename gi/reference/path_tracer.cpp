@@ -515,15 +515,18 @@ struct PathTracer::Impl {
         return glm::dot(bent, bent) > 1e-12f ? glm::normalize(bent) : N;
     }
 
-    // Offset along the geometric normal, scaled with the coordinates' magnitude (float rounding
-    // grows with it) so large scenes (Sponza) and tiny ones (Avocado) both escape their own
-    // surface, plus a floor of 1e-5 of the scene's radius for points near the origin. The floor
-    // was 1e-4 world units: a sizeable step in a room 2 cm wide, which came out 14-17 % darker
-    // than the same room at 1 m (Reference.TheImageIsTheSameAtAnyScale).
-    glm::vec3 offset(const glm::vec3& p, const glm::vec3& ng) const {
-        float scale = 1e-4f * std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))) + 1e-5f * scene.bounds.radius();
-        return p + ng * scale;
-    }
+    // Offset along the geometric normal, each coordinate by 16 float steps of itself (2^-19 of
+    // it: the rounding of P = o + t d grows with each coordinate, so a floor at y = 0 far out
+    // along x needs no more than one at the origin), plus a floor of 1e-5 of the scene's radius
+    // for coordinates near zero. The floor was 1e-4 world units: a sizeable step in a room 2 cm
+    // wide, which came out 14-17 % darker than the same room at 1 m
+    // (Reference.TheImageIsTheSameAtAnyScale). The relative part was 1e-4 of the largest
+    // coordinate (800 steps): half a metre for a room 5 km from the origin, whose shadow and
+    // bounce rays then started that far off their surfaces (the room 3 % darker, the sphere's
+    // shadow on the wall instead of the floor; Reference.TheImageIsTheSameFarFromTheOrigin).
+    // 16 and 64 steps give the same Sponza, Cornell and basic references within 0.01 %.
+    glm::vec3 margin(const glm::vec3& p) const { return 0x1p-19f * glm::abs(p) + glm::vec3(1e-5f * scene.bounds.radius()); }
+    glm::vec3 offset(const glm::vec3& p, const glm::vec3& ng) const { return p + ng * margin(p); }
 
     // Light from one punctual light arriving at P along direction L (unoccluded): the light
     // model of the raster passes (common/light.h) on the same packed light. An area light is its
@@ -717,7 +720,8 @@ struct PathTracer::Impl {
         glm::vec3 f = bsdf.eval(Ldir);
         if (maxComponent(f) <= 0.0f) return glm::vec3(0.0f);
         ++rays;
-        if (occluded(Po, Ldir, dist * (1.0f - 1e-3f))) return glm::vec3(0.0f);
+        // Stop short of the emitter's own triangle by the same margin the ray started with.
+        if (occluded(Po, Ldir, dist * (1.0f - 1e-3f) - std::abs(glm::dot(Ldir, margin(Pl))))) return glm::vec3(0.0f);
         float w = powerHeuristic(pdfLight, bsdf.pdf(Ldir));
         auto uv = uvAt(e.triangle, b1, b2);
         return f * NoL * emission(scene, m, uv.first, uv.second) * em.scale[size_t(e.triangle)] * w / pdfLight;
@@ -761,8 +765,14 @@ bool PathTracer::trace(const FrameSettings& fs, const ReferenceSettings& rs, int
     const int w = fs.width, h = fs.height;
     if (sum.empty()) sum.assign(size_t(w) * h * 3, 0.0);
     GI_ASSERT(sum.size() == size_t(w) * h * 3, "accumulation buffer size");
-    const glm::mat4 view = viewMatrix(fs.camera);
-    const glm::mat4 invViewProj = glm::inverse(projectionMatrix(fs.camera, float(w) / float(h)) * view);
+    // Rays leave the eye along directions from a camera moved to the origin: with the eye's
+    // translation inside the inverted matrix, a camera 5 km out lost enough precision to shift
+    // the picture by a fraction of a pixel (Reference.TheImageIsTheSameFarFromTheOrigin).
+    CameraSettings atOrigin = fs.camera;
+    atOrigin.target -= atOrigin.eye;
+    atOrigin.eye = glm::vec3(0.0f);
+    const glm::mat4 view = viewMatrix(atOrigin);
+    const glm::mat4 invViewProj = glm::inverse(projectionMatrix(atOrigin, float(w) / float(h)) * view);
     const glm::vec3 forward = -glm::vec3(glm::inverse(view)[2]);
     const Medium medium = makeMedium(fs.volumetric, mImpl->scene.bounds);
     Environment env;

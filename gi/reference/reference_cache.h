@@ -17,7 +17,7 @@
 
 namespace gi {
 
-inline constexpr int kReferenceVersion = 4;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend); 4: the surface offset scales with the scene, not a floor of 1e-4 units
+inline constexpr int kReferenceVersion = 5;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend); 4: the surface offset scales with the scene, not a floor of 1e-4 units; 5: its relative part 2^-17, not 1e-4
 
 uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
 
