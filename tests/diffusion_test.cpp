@@ -13,6 +13,7 @@
 #include "gi/util/error.h"
 #include "test_util.h"
 
+#include <algorithm>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/packing.hpp>
 
@@ -524,6 +525,50 @@ TEST_F(DiffusionGL, ATiltedFaceShadesWithoutVoxelStripes) {
     ASSERT_GT(meanRaw, 0.0);
     EXPECT_LT(smoothed, 0.5 * raw) << "the panel's stripes should at least halve";
     EXPECT_NEAR(meanSmoothed / meanRaw, 1.0, 0.05);
+}
+
+// A closed room whose walls lie at the grid's edge, lit by a point light: looking down at the
+// back wall's foot, the indirect light down the middle column of the view has no dark line where
+// the floor meets the wall. The cell there is open only below the floor, to the outside, so it
+// holds almost no light; shading read it beside the floor's cells and drew a line at 0.10 of the
+// column's median (shade.comp now reads only cells open on the pixel's side: 0.91).
+TEST_F(DiffusionGL, NoDarkLineWhereAFloorMeetsAWall) {
+    Scene scene;
+    MeshBuilder b(scene);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});    // floor
+    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});    // ceiling
+    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});    // back
+    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});     // front
+    b.quad(white, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});    // left
+    b.quad(white, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});     // right
+    scene.finalize();
+    Preset p;
+    p.header.technique.name = "diffusion";
+    FrameSettings fs = frameSettings(p, scene, 64, 64);
+    LightSettings point;
+    point.type = LightType::Point;
+    point.position = {0.0f, 2.5f, 0.0f};
+    point.intensity = 8.0f;
+    fs.lights = {point};
+    fs.camera.eye = {0.0f, 1.2f, 1.0f};
+    fs.camera.target = {0.0f, 0.2f, -2.0f};
+    fs.camera.fovY = 60.0f;
+    Renderer r;
+    r.setScene(scene);
+    test::meanIndirect(r, fs);  // renders (GI_TEST_IMAGES writes the picture)
+    std::vector<float> rgba = r.readIndirectRadiance();
+    std::vector<double> column;
+    for (int y = 0; y < fs.height; ++y) {
+        const float* q = &rgba[size_t(y * fs.width + fs.width / 2) * 4];
+        column.push_back(0.2126 * q[0] + 0.7152 * q[1] + 0.0722 * q[2]);
+    }
+    std::vector<double> sorted = column;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2], darkest = sorted.front();
+    std::printf("floor and back wall, middle column: darkest %.5f, median %.5f (%.2f)\n", darkest, median, darkest / median);
+    ASSERT_GT(median, 0.0);
+    EXPECT_GT(darkest, 0.5 * median);
 }
 
 // Settings that would stall the frame are refused before anything is allocated, naming the key.
