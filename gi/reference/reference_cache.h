@@ -17,7 +17,7 @@
 
 namespace gi {
 
-inline constexpr int kReferenceVersion = 5;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend); 4: the surface offset scales with the scene, not a floor of 1e-4 units; 5: its relative part 2^-17, not 1e-4
+inline constexpr int kReferenceVersion = 5;  // 3: the full glTF material (normal, metallic-roughness, emissive maps, texture transforms, Blend); 4: the surface offset scales with the scene, not a floor of 1e-4 units; 5: 2^-19 of each coordinate, not 1e-4 of the largest, and camera rays from a camera at the origin
 
 uint64_t referenceKey(const Scene& scene, const FrameSettings& fs, const ReferenceSettings& rs);
 
