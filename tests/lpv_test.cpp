@@ -288,6 +288,43 @@ std::vector<RSMTexel> readCube(const Renderer& r) {
     return all;
 }
 
+// Light adds up: two point lights at one place, each of half the intensity, light a closed
+// room as one. Each light's RSMs add their surfels to the geometry volume, and summed, a surface
+// both lights see blocked and reflected twice: the mean indirect light came out 1.3x that of the
+// single light (geometry_merge.comp now keeps one light's surfels per corner, the larger coverage).
+TEST_F(LPVGL, TwoLightsAtOnePlaceLightTheRoomAsOne) {
+    Scene scene;
+    MeshBuilder b(scene);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});  // floor
+    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});  // ceiling
+    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});  // back
+    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});   // front
+    b.quad(white, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});  // left
+    b.quad(white, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});   // right
+    b.box(white, {0.5f, 0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 20.0f);
+    scene.finalize();
+    Preset p;
+    p.header.technique.name = "lpv";
+    FrameSettings fs = frameSettings(p, scene, 64, 48);
+    fs.camera.eye = {0.0f, 1.5f, 1.8f};
+    fs.camera.target = {0.0f, 0.8f, -2.0f};
+    LightSettings point;
+    point.type = LightType::Point;
+    point.position = {-0.8f, 2.5f, 0.3f};
+    point.intensity = 16.0f;
+    Renderer r;
+    r.setScene(scene);
+    fs.lights = {point};
+    const double one = test::meanIndirect(r, fs);
+    point.intensity = 8.0f;
+    fs.lights = {point, point};
+    const double two = test::meanIndirect(r, fs);
+    std::printf("indirect light: one light %.5f, two at its place with half its intensity %.5f (%.3f)\n", one, two, two / one);
+    ASSERT_GT(one, 0.0);
+    EXPECT_NEAR(two / one, 1.0, 0.01);
+}
+
 // Energy: a closed room catches everything a point light emits, 4 pi I, so the flux its cube RSM
 // hands to injection is albedo * 4 pi I (each wall's share weighted by its albedo).
 TEST_F(LPVGL, PointLightCubeRSMCarriesTheEmittedFlux) {

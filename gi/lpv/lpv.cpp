@@ -92,6 +92,7 @@ LPV::LPV()
     : mInjectProg("lpv.inject", {{GL_COMPUTE_SHADER, "lpv/inject.comp"}}, {gl::floatAtomicsDefine()}),
       mGeometryProg("lpv.geometry", {{GL_COMPUTE_SHADER, "lpv/geometry.comp"}}, {gl::floatAtomicsDefine()}),
       mGeometryResolveProg("lpv.geometryResolve", {{GL_COMPUTE_SHADER, "lpv/geometry_resolve.comp"}}),
+      mGeometryMergeProg("lpv.geometryMerge", {{GL_COMPUTE_SHADER, "lpv/geometry_merge.comp"}}),
       mTransmitProg("lpv.transmit", {{GL_COMPUTE_SHADER, "lpv/transmit.comp"}}),
       mPropagateProg("lpv.propagate", {{GL_COMPUTE_SHADER, "lpv/propagate.comp"}}),
       mBounceProg("lpv.bounce", {{GL_COMPUTE_SHADER, "lpv/bounce.comp"}}),
@@ -103,7 +104,7 @@ LPV::LPV()
                 mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }),
       mRSMOpaqueProgs("lpv.rsmOpaque", {{GL_VERTEX_SHADER, "lpv/rsm.vert"}, {GL_FRAGMENT_SHADER, "lpv/rsm.frag"}}, {"ALPHA_CUT=0"},
                       mMaterialBinding, [this](gl::Program& p) { mBlock.requireIn(p); }) {
-    for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
+    for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mGeometryMergeProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
                            &mShadeProg, &mSkyProg})
         mBlock.requireIn(*p);
     mLinear = gl::createSampler({GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE});
@@ -388,19 +389,46 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         return;
     }
     mGeometryProg.use();
-    // Surfels from the RSMs.
+    // Surfels from the RSMs. With RSMs of more than one light, each light's are summed apart (in
+    // the G-buffer's buffer, cleared again below) and merged corner by corner, the larger coverage
+    // kept (geometry_merge.comp): the lights see the same surfaces, which should block and reflect
+    // once. The albedo sums are the coverage-weighted mean, which the repeats leave as it is.
     if (!keepRSM) {
         LPVParams p{};
         p.fromGBuffer = 0;
-        for (const RSM& m : mRSMs) {
+        int lightsWithRSMs = 0;
+        for (size_t i = 0; i < mRSMs.size(); ++i)
+            if (i == 0 || mRSMs[i].light != mRSMs[i - 1].light) ++lightsWithRSMs;
+        const bool merge = lightsWithRSMs > 1;
+        for (size_t i = 0; i < mRSMs.size(); ++i) {
+            const RSM& m = mRSMs[i];
+            if (merge && (i == 0 || m.light != mRSMs[i - 1].light))
+                for (auto& c : mCascadeData) clearBuffer(c.geometryGBuffer);
+            mGeometryProg.use();
             glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
             glBindImageTexture(kLPVImageAlbedo, m.albedo.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
-            dispatchPerTexel(m, p, [](const Cascade& c) {
-                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, c.geometryRSM.id());
+            dispatchPerTexel(m, p, [merge](const Cascade& c) {
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, (merge ? c.geometryGBuffer : c.geometryRSM).id());
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, c.albedo.id());
             });
+            if (merge && (i + 1 == mRSMs.size() || mRSMs[i + 1].light != m.light)) {
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+                mGeometryMergeProg.use();
+                LPVParams merged{};
+                merged.resolution = mResolution;
+                mBlock.set(merged);
+                for (auto& c : mCascadeData) {
+                    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryRSM, c.geometryRSM.id());
+                    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryGBuffer, c.geometryGBuffer.id());
+                    gl::dispatch3D(mResolution + 1);
+                }
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            }
         }
+        if (merge)
+            for (auto& c : mCascadeData) clearBuffer(c.geometryGBuffer);
+        mGeometryProg.use();
         // The sums so far are the RSMs' alone: kept for the frames that change none of their inputs.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         for (auto& c : mCascadeData) {
@@ -688,7 +716,7 @@ std::string LPVSettings::notes(const FrameSettings& fs) { return lpvIgnoredLight
 bool LPV::reloadShaders(std::string& log) {
     for (RSM& m : mRSMs) m.drawn = false;  // the edited shaders draw them afresh
     bool ok = true;
-    for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
+    for (gl::Program* p : {&mInjectProg, &mGeometryProg, &mGeometryResolveProg, &mGeometryMergeProg, &mTransmitProg, &mPropagateProg, &mBounceProg, &mResolveProg,
                            &mShadeProg, &mSkyProg})
         if (!p->reload()) {
             ok = false;

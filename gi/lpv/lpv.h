@@ -19,7 +19,9 @@
 //      one-sided (a surfel blocks light hitting its front) and the two sources often see opposite
 //      sides of a thin wall, or the same surface: they stay in two volumes and each face takes
 //      the larger of their blockings, so a thin wall blocks both ways and nothing counts twice.
-//      Each surfel also adds its diffuse albedo (RSM: a fourth attachment; G-buffer: base colour
+//      Likewise the RSMs of several lights: each light's surfels are summed apart and merged
+//      corner by corner, the larger coverage kept (geometry_merge.comp; summed, sixteen lights
+//      over a room made it 2.9x too bright). Each surfel also adds its diffuse albedo (RSM: a fourth attachment; G-buffer: base colour
 //      x (1 - metallic)) weighted by its coverage to an albedo volume on the same corners.
 //   4. Propagation [lpv.propagate]: once per frame, the transmittance of every cell face from the
 //      geometry volume; then, per bounce, the gather steps. Each cell takes from its 6 neighbours
@@ -176,7 +178,7 @@ private:
         gl::Texture shR, shG, shB, geometryRSMVolume, geometryGBufferVolume;
     };
 
-    gl::Program mInjectProg, mGeometryProg, mGeometryResolveProg, mTransmitProg, mPropagateProg, mBounceProg,
+    gl::Program mInjectProg, mGeometryProg, mGeometryResolveProg, mGeometryMergeProg, mTransmitProg, mPropagateProg, mBounceProg,
         mResolveProg, mShadeProg, mSkyProg;
     gl::UniformBlock<shared::LPVParams> mBlock;  // every pass reads it
     // propagate's views of its grids (propagateStep), which bounce and resolve re-point too
