@@ -533,16 +533,7 @@ TEST_F(DiffusionGL, ATiltedFaceShadesWithoutVoxelStripes) {
 // holds almost no light; shading read it beside the floor's cells and drew a line at 0.10 of the
 // column's median (shade.comp now reads only cells open on the pixel's side: 0.91).
 TEST_F(DiffusionGL, NoDarkLineWhereAFloorMeetsAWall) {
-    Scene scene;
-    MeshBuilder b(scene);
-    int white = b.material("white", glm::vec3(0.8f), 1.0f);
-    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});    // floor
-    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});    // ceiling
-    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});    // back
-    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});     // front
-    b.quad(white, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});    // left
-    b.quad(white, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});     // right
-    scene.finalize();
+    Scene scene = test::closedRoom();
     Preset p;
     p.header.technique.name = "diffusion";
     FrameSettings fs = frameSettings(p, scene, 64, 64);

@@ -293,16 +293,9 @@ std::vector<RSMTexel> readCube(const Renderer& r) {
 // both lights see blocked and reflected twice: the mean indirect light came out 1.3x that of the
 // single light (geometry_merge.comp now keeps one light's surfels per corner, the larger coverage).
 TEST_F(LPVGL, TwoLightsAtOnePlaceLightTheRoomAsOne) {
-    Scene scene;
+    Scene scene = test::closedRoom();
     MeshBuilder b(scene);
-    int white = b.material("white", glm::vec3(0.8f), 1.0f);
-    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});  // floor
-    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});  // ceiling
-    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});  // back
-    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});   // front
-    b.quad(white, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});  // left
-    b.quad(white, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});   // right
-    b.box(white, {0.5f, 0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 20.0f);
+    b.box(0, {0.5f, 0.5f, -0.5f}, {0.5f, 0.5f, 0.5f}, 20.0f);  // material 0: the room's white
     scene.finalize();
     Preset p;
     p.header.technique.name = "lpv";

@@ -90,6 +90,20 @@ Scene openFloor() {
     return s;
 }
 
+Scene closedRoom() {
+    Scene s;
+    MeshBuilder b(s);
+    int white = b.material("white", glm::vec3(0.8f), 1.0f);
+    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});  // floor
+    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});  // ceiling
+    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});  // back
+    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});   // front
+    b.quad(white, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});  // left
+    b.quad(white, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});   // right
+    s.finalize();
+    return s;
+}
+
 Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo) {
     Scene s;
     MeshBuilder b(s);

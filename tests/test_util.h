@@ -50,6 +50,9 @@ RoomsIndirect twoRoomsIndirect(Renderer& r, FrameSettings fs, glm::vec3 offset);
 // 1 m high, and a frame of `technique` looking straight down at the floor's centre from 0.6 m,
 // lit only by a constant environment of radiance 1 (no light).
 Scene openFloor();
+// A closed room 4 x 3 x 4 m (x and z from -2 to 2, y from 0 to 3), all of it material 0, white
+// of albedo 0.8, with no light.
+Scene closedRoom();
 Scene closedBox();
 // A scene of one box of half size `half`, turned yawDeg about +y, its faces of the given albedo.
 Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo);
