@@ -71,9 +71,14 @@ TEST(RenderCLI, EveryShippedPresetRenders) {
         EXPECT_GT(stats["memoryBytes"].get<double>(), 0.0);
         EXPECT_FALSE(stats["renderer"].get<std::string>().empty());
         EXPECT_EQ(stats["settings"]["schemaVersion"], Preset::kSchemaVersion);
+        // A view into the two-room scene's closed room is black in the reference: what light it
+        // shows has leaked, and the image test holds it to its preset's maxLeakFraction
+        // (diffusion_two_rooms: a mean of 7 of 255 once diffusion stopped lighting the shared
+        // wall's foot from the lit room).
+        const bool closedRoom = stats["settings"]["scene"] == "two_rooms" && stats["settings"]["camera"].value("sceneCamera", -1) == 1;
         double mean = 0;
         for (size_t i = 0; i < img.rgba.size(); i += 4) mean += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2];
-        EXPECT_GT(mean / (img.rgba.size() / 4 * 3), 8.0) << entry.path() << " renders (nearly) black";
+        if (!closedRoom) EXPECT_GT(mean / (img.rgba.size() / 4 * 3), 8.0) << entry.path() << " renders (nearly) black";
     }
 }
 
