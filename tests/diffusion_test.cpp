@@ -537,11 +537,7 @@ TEST_F(DiffusionGL, NoDarkLineWhereAFloorMeetsAWall) {
     Preset p;
     p.header.technique.name = "diffusion";
     FrameSettings fs = frameSettings(p, scene, 64, 64);
-    LightSettings point;
-    point.type = LightType::Point;
-    point.position = {0.0f, 2.5f, 0.0f};
-    point.intensity = 8.0f;
-    fs.lights = {point};
+    fs.lights = {test::pointLight({0.0f, 2.5f, 0.0f}, 8.0f)};
     fs.camera.eye = {0.0f, 1.2f, 1.0f};
     fs.camera.target = {0.0f, 0.2f, -2.0f};
     fs.camera.fovY = 60.0f;

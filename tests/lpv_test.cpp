@@ -213,29 +213,14 @@ TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
 
 // A closed room, 4 x 3 x 4 m, red wall at -x, green at +x, the rest white, lit by `light`.
 Scene closedRoom(const LightSettings& light) {
-    Scene s;
-    MeshBuilder b(s);
-    int white = b.material("white", glm::vec3(0.75f), 1.0f);
-    int red = b.material("red", glm::vec3(0.7f, 0.15f, 0.1f), 1.0f);
-    int green = b.material("green", glm::vec3(0.15f, 0.6f, 0.1f), 1.0f);
-    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});   // floor
-    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});   // ceiling
-    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});   // back
-    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});    // front
-    b.quad(red, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});     // left
-    b.quad(green, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});    // right
+    Scene s = test::closedRoom(0.75f, glm::vec3(0.7f, 0.15f, 0.1f), glm::vec3(0.15f, 0.6f, 0.1f));
     s.lights.push_back(light);
     s.finalize();
     return s;
 }
 
-LightSettings pointLight() {
-    LightSettings l;
-    l.type = LightType::Point;
-    l.position = {0.4f, 2.2f, -0.3f};  // off centre, so the faces see the walls at different distances
-    l.intensity = 10.0f;
-    return l;
-}
+// Off centre, so the faces see the walls at different distances.
+LightSettings pointLight() { return test::pointLight({0.4f, 2.2f, -0.3f}, 10.0f); }
 
 FrameSettings roomSettings(const Scene& scene, int rsmResolution) {
     Preset p;
@@ -302,10 +287,7 @@ TEST_F(LPVGL, TwoLightsAtOnePlaceLightTheRoomAsOne) {
     FrameSettings fs = frameSettings(p, scene, 64, 48);
     fs.camera.eye = {0.0f, 1.5f, 1.8f};
     fs.camera.target = {0.0f, 0.8f, -2.0f};
-    LightSettings point;
-    point.type = LightType::Point;
-    point.position = {-0.8f, 2.5f, 0.3f};
-    point.intensity = 16.0f;
+    LightSettings point = test::pointLight({-0.8f, 2.5f, 0.3f}, 16.0f);
     Renderer r;
     r.setScene(scene);
     fs.lights = {point};

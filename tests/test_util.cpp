@@ -90,18 +90,28 @@ Scene openFloor() {
     return s;
 }
 
-Scene closedRoom() {
+Scene closedRoom(float white, glm::vec3 left, glm::vec3 right) {
     Scene s;
     MeshBuilder b(s);
-    int white = b.material("white", glm::vec3(0.8f), 1.0f);
-    b.quad(white, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});  // floor
-    b.quad(white, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});  // ceiling
-    b.quad(white, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});  // back
-    b.quad(white, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});   // front
-    b.quad(white, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});  // left
-    b.quad(white, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});   // right
+    int w = b.material("white", glm::vec3(white), 1.0f);
+    int l = b.material("left", left, 1.0f);
+    int r = b.material("right", right, 1.0f);
+    b.quad(w, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4});  // floor
+    b.quad(w, {-2, 3, -2}, {4, 0, 0}, {0, 0, 4});  // ceiling
+    b.quad(w, {-2, 0, -2}, {4, 0, 0}, {0, 3, 0});  // back
+    b.quad(w, {2, 0, 2}, {-4, 0, 0}, {0, 3, 0});   // front
+    b.quad(l, {-2, 0, 2}, {0, 0, -4}, {0, 3, 0});  // left
+    b.quad(r, {2, 0, -2}, {0, 0, 4}, {0, 3, 0});   // right
     s.finalize();
     return s;
+}
+
+LightSettings pointLight(glm::vec3 position, float intensity) {
+    LightSettings l;
+    l.type = LightType::Point;
+    l.position = position;
+    l.intensity = intensity;
+    return l;
 }
 
 Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo) {

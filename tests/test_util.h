@@ -50,9 +50,12 @@ RoomsIndirect twoRoomsIndirect(Renderer& r, FrameSettings fs, glm::vec3 offset);
 // 1 m high, and a frame of `technique` looking straight down at the floor's centre from 0.6 m,
 // lit only by a constant environment of radiance 1 (no light).
 Scene openFloor();
-// A closed room 4 x 3 x 4 m (x and z from -2 to 2, y from 0 to 3), all of it material 0, white
-// of albedo 0.8, with no light.
-Scene closedRoom();
+// A closed room 4 x 3 x 4 m (x and z from -2 to 2, y from 0 to 3) with no light: floor,
+// ceiling, back and front of albedo `white` (material 0), the wall at -x of `left` (material 1)
+// and the one at +x of `right` (material 2).
+Scene closedRoom(float white = 0.8f, glm::vec3 left = glm::vec3(0.8f), glm::vec3 right = glm::vec3(0.8f));
+// A point light (the light's other settings at their defaults).
+LightSettings pointLight(glm::vec3 position, float intensity);
 Scene closedBox();
 // A scene of one box of half size `half`, turned yawDeg about +y, its faces of the given albedo.
 Scene box(glm::vec3 centre, glm::vec3 half, float yawDeg, float albedo);

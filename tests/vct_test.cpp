@@ -142,6 +142,9 @@ const VCT& vctOf(const Renderer& r) {
     return *v;
 }
 
+// The first float of texel (x, y, z) in readRGBA's copy of an n^3 level.
+size_t idx(int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; }
+
 std::vector<float> readRGBA(const gl::Texture& t, int level) {
     size_t texels = size_t(std::max(t.width() >> level, 1)) * std::max(t.height() >> level, 1) * std::max(t.depth() >> level, 1);
     std::vector<float> v(texels * 4);
@@ -151,7 +154,6 @@ std::vector<float> readRGBA(const gl::Texture& t, int level) {
 
 // Each mip of a res^3 RGBA volume above level 0 is the mean of its 8 children (fp16 storage).
 void expectBoxFilteredMips(const gl::Texture& t, int res, const char* what) {
-    auto idx = [](int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; };
     std::vector<float> fine = readRGBA(t, 0);
     for (int level = 1; level < vctMipCount(res); ++level) {
         std::vector<float> coarse = readRGBA(t, level);
@@ -191,7 +193,6 @@ TEST_F(VCTGL, MipsAreConsistent) {
     const VCT& v = vctOf(r);
     const auto& radiance = v.levels()[0].radiance;
     int res = v.resolution();
-    auto idx = [](int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; };
     std::vector<float> fine = readRGBA(radiance, 0);
     size_t occupied = 0;
     for (size_t i = 3; i < fine.size(); i += 4) occupied += fine[i] > 0.5f;
@@ -264,7 +265,6 @@ TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheVoxels) {
     int res = v.resolution();
     const gl::Texture& centroid = v.centroidVolume();
     ASSERT_EQ(centroid.width(), res);
-    auto idx = [](int n, int x, int y, int z) { return ((size_t(z) * n + y) * n + x) * 4; };
     std::vector<float> opacity = readRGBA(v.levels()[0].radiance, 0), fine = readRGBA(centroid, 0);
     double worst = 0;
     size_t occupied = 0;

@@ -11,6 +11,7 @@
 #include "gi/scene/camera.h"
 #include "gi/scene/mesh_builder.h"
 #include "gi/volumetric/medium.h"
+#include "test_util.h"
 
 #include <gtest/gtest.h>
 
@@ -51,14 +52,6 @@ FrameSettings frame(glm::vec3 eye, glm::vec3 target, int size, float fovY) {
     fs.render.specular = false;  // black walls then reflect exactly nothing
     fs.width = fs.height = size;
     return fs;
-}
-
-LightSettings pointLight(glm::vec3 position, float intensity) {
-    LightSettings l;
-    l.type = LightType::Point;
-    l.position = position;
-    l.intensity = intensity;
-    return l;
 }
 
 LightSettings spotDown(glm::vec3 position, float intensity, float innerDeg, float outerDeg, float range) {
@@ -227,7 +220,7 @@ FrameSettings wallFrame() {
     LightSettings sun;
     sun.direction = glm::normalize(glm::vec3(0.2f, -0.5f, -1.0f));
     sun.intensity = 3.0f;
-    fs.lights = {sun, pointLight({1.0f, 0.5f, 2.0f}, 2.0f)};
+    fs.lights = {sun, test::pointLight({1.0f, 0.5f, 2.0f}, 2.0f)};
     return fs;
 }
 
@@ -286,14 +279,14 @@ TEST(VolumetricReference, InScatteringMatchesQuadrature) {
     sun.direction = {0.0f, -1.0f, 0.0f};
     sun.intensity = 3.0f;
     const QuadratureCase cases[] = {
-        {"point, isotropic", false, pointLight({0, 0, 0}, 10.0f), coefficients(0.05f, 0.1f), {0, 1, 2}, {0, 1, -8}},
-        {"point, HG 0.6, towards", false, pointLight({0, 0, 0}, 10.0f), hg, {0, 1, 2}, {0, 1, -8}},
-        {"point, HG 0.6, away", false, pointLight({0, 0, 0}, 10.0f), hg, {0, 1, 2}, {0, 1, 12}},
+        {"point, isotropic", false, test::pointLight({0, 0, 0}, 10.0f), coefficients(0.05f, 0.1f), {0, 1, 2}, {0, 1, -8}},
+        {"point, HG 0.6, towards", false, test::pointLight({0, 0, 0}, 10.0f), hg, {0, 1, 2}, {0, 1, -8}},
+        {"point, HG 0.6, away", false, test::pointLight({0, 0, 0}, 10.0f), hg, {0, 1, 2}, {0, 1, 12}},
         {"spot, HG 0.6, range", false, spotDown({0, 4, 0}, 30.0f, 12.0f, 20.0f, 6.0f),
          coefficients(0.05f, 0.05f, PhaseFunction::HenyeyGreenstein, 0.6f), {0, 0, 4}, {0, 0, -4}},
         {"sun, HG -0.3, roof shadow", true, sun, coefficients(0.08f, 0.02f, PhaseFunction::HenyeyGreenstein, -0.3f),
          {-4.5f, 2, 2}, {4.5f, -3, -2}},
-        {"point, eye above the box", false, pointLight({0, 0, 0}, 10.0f),
+        {"point, eye above the box", false, test::pointLight({0, 0, 0}, 10.0f),
          coefficients(0.05f, 0.1f, PhaseFunction::HenyeyGreenstein, 0.6f), {1, 8, 0.5f}, {-1, -5, 0}},
     };
     Outcome outcomes[6];
@@ -369,7 +362,7 @@ TEST(VolumetricReference, SpotConeClipsInScattering) {
     ImageRGB beside = render({3, 0, 4}, spot);
     float maxBeside = *std::max_element(beside.rgb.begin(), beside.rgb.end());
     EXPECT_EQ(maxBeside, 0.0f);
-    ImageRGB pointBeside = render({3, 0, 4}, pointLight({0, 4, 0}, 50.0f));
+    ImageRGB pointBeside = render({3, 0, 4}, test::pointLight({0, 4, 0}, 50.0f));
     EXPECT_GT(red(pointBeside, 4, 4), 0.0f);
 }
 
@@ -379,7 +372,7 @@ TEST(VolumetricReference, InScatteringCountsAsDirectLight) {
     Scene scene = blackRoom();
     PathTracer pt(scene);
     FrameSettings fs = frame({0, 1, 2}, {0, 1, -8}, 9, 30.0f);
-    fs.lights = {pointLight({0, 0, 0}, 10.0f)};
+    fs.lights = {test::pointLight({0, 0, 0}, 10.0f)};
     fs.volumetric = coefficients(0.2f, 0.0f);
     ReferenceSettings rs;
     rs.spp = 8;
@@ -399,7 +392,7 @@ TEST(VolumetricReference, InScatteringCountsAsDirectLight) {
 TEST(VolumetricReference, ShadowRaysAreCounted) {
     Scene scene = blackRoom();
     FrameSettings fs = frame({0, 1, 2}, {0, 1, -8}, 9, 30.0f);
-    fs.lights = {pointLight({0, 0, 0}, 10.0f)};
+    fs.lights = {test::pointLight({0, 0, 0}, 10.0f)};
     ReferenceSettings rs;
     rs.spp = 4;
     rs.maxBounces = 1;
@@ -418,7 +411,7 @@ TEST(VolumetricReference, Deterministic) {
     FrameSettings fs = frame({-4, 1, 4}, {2, -1, -3}, 16, 50.0f);
     LightSettings sun;
     sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
-    fs.lights = {sun, pointLight({1, 0, -1}, 10.0f), spotDown({-2, 3, 0}, 30.0f, 15.0f, 25.0f, 8.0f)};
+    fs.lights = {sun, test::pointLight({1, 0, -1}, 10.0f), spotDown({-2, 3, 0}, 30.0f, 15.0f, 25.0f, 8.0f)};
     fs.volumetric = coefficients(0.1f, 0.05f, PhaseFunction::HenyeyGreenstein, 0.5f);
     ReferenceSettings rs;
     rs.spp = 8;
