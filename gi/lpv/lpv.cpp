@@ -389,45 +389,42 @@ void LPV::buildGeometry(const FrameContext& ctx) {
         return;
     }
     mGeometryProg.use();
-    // Surfels from the RSMs. With RSMs of more than one light, each light's are summed apart (in
-    // the G-buffer's buffer, cleared again below) and merged corner by corner, the larger coverage
-    // kept (geometry_merge.comp): the lights see the same surfaces, which should block and reflect
-    // once. The albedo sums are the coverage-weighted mean, which the repeats leave as it is.
+    // Surfels from the RSMs. Each light's are summed apart (in the G-buffer's buffer, cleared
+    // again below) and merged corner by corner, the larger coverage kept (geometry_merge.comp):
+    // the lights see the same surfaces, which should block and reflect once. The albedo sums
+    // are the coverage-weighted mean, which the repeats leave as it is.
     if (!keepRSM) {
         LPVParams p{};
         p.fromGBuffer = 0;
-        int lightsWithRSMs = 0;
-        for (size_t i = 0; i < mRSMs.size(); ++i)
-            if (i == 0 || mRSMs[i].light != mRSMs[i - 1].light) ++lightsWithRSMs;
-        const bool merge = lightsWithRSMs > 1;
+        auto mergeLight = [&] {
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            mGeometryMergeProg.use();
+            LPVParams merged{};
+            merged.resolution = mResolution;
+            mBlock.set(merged);
+            for (auto& c : mCascadeData) {
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryRSM, c.geometryRSM.id());
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryGBuffer, c.geometryGBuffer.id());
+                gl::dispatch3D(mResolution + 1);
+            }
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        };
         for (size_t i = 0; i < mRSMs.size(); ++i) {
             const RSM& m = mRSMs[i];
-            if (merge && (i == 0 || m.light != mRSMs[i - 1].light))
+            if (i == 0 || m.light != mRSMs[i - 1].light) {  // a light's first RSM
                 for (auto& c : mCascadeData) clearBuffer(c.geometryGBuffer);
-            mGeometryProg.use();
+                mGeometryProg.use();
+            }
             glBindImageTexture(kLPVImageNormal, m.normal.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(kLPVImagePosition, m.position.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
             glBindImageTexture(kLPVImageAlbedo, m.albedo.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
-            dispatchPerTexel(m, p, [merge](const Cascade& c) {
-                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, (merge ? c.geometryGBuffer : c.geometryRSM).id());
+            dispatchPerTexel(m, p, [](const Cascade& c) {
+                glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometry, c.geometryGBuffer.id());
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryAlbedo, c.albedo.id());
             });
-            if (merge && (i + 1 == mRSMs.size() || mRSMs[i + 1].light != m.light)) {
-                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-                mGeometryMergeProg.use();
-                LPVParams merged{};
-                merged.resolution = mResolution;
-                mBlock.set(merged);
-                for (auto& c : mCascadeData) {
-                    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryRSM, c.geometryRSM.id());
-                    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLPVBufferGeometryGBuffer, c.geometryGBuffer.id());
-                    gl::dispatch3D(mResolution + 1);
-                }
-                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-            }
+            if (i + 1 == mRSMs.size() || mRSMs[i + 1].light != m.light) mergeLight();  // its last
         }
-        if (merge)
-            for (auto& c : mCascadeData) clearBuffer(c.geometryGBuffer);
+        for (auto& c : mCascadeData) clearBuffer(c.geometryGBuffer);
         mGeometryProg.use();
         // The sums so far are the RSMs' alone: kept for the frames that change none of their inputs.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
