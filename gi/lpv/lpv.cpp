@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 namespace gi {
@@ -125,14 +126,22 @@ size_t LPV::estimateBytes(const FrameSettings& fs) {
     return perCascade * size_t(s.cascadeCount) + rsm;
 }
 
-void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
-    // The volumes and RSMs follow the Reallocate fields (grid, cascades, RSM size, the lights).
-    if (!any(Cost(changes), Cost::Reallocate)) return;
+int lpvGridResolution(const LPVSettings& s, const FreePath& path) {
+    if (!s.fitGrid || s.cascadeCount != 1 || s.cascadeExtent > 0.0f || !(path.meanHitDistance > 0.0f)) return s.gridResolution;
+    const float cells = kLPVFitCellsPerGap * path.cubeSize / path.meanHitDistance;
+    const int coarsest = std::min(kLPVFitMinCells, s.gridResolution);
+    return cells >= float(s.gridResolution) ? s.gridResolution : std::max(coarsest, int(std::ceil(cells)));
+}
+
+void LPV::allocate(const FrameSettings& fs, uint8_t changes, int resolution) {
+    // The volumes and RSMs follow the Reallocate fields (grid, cascades, RSM size, the lights),
+    // and a fitted grid the scene.
+    if (!any(Cost(changes), Cost::Reallocate) && resolution == mResolution) return;
     const LPVSettings& s = fs.lpv;
     size_t rsmCount = 0;
     for (const auto& l : fs.lights) rsmCount += rsmMaps(l, s.cascadeCount);
     {
-        mResolution = s.gridResolution;
+        mResolution = resolution;
         // propagate.comp views a grid as a buffer texture of 3 texels per cell.
         gl::requireBufferTexels(cells(mResolution) * kCoefficients / 4, "lpv.gridResolution");
         mCascadeData.clear();
@@ -193,9 +202,12 @@ void LPV::allocate(const FrameSettings& fs, uint8_t changes) {
 }
 
 void LPV::indirect(FrameContext& ctx) {
-    allocate(ctx.settings, ctx.changes);
+    mFreePath = ctx.scene.freePath();
+    LPVSettings grid = ctx.settings.lpv;
+    grid.gridResolution = lpvGridResolution(grid, mFreePath);
+    allocate(ctx.settings, ctx.changes, grid.gridResolution);
     const Bounds& b = ctx.scene.bounds();
-    mBoxes = lpvCascades(ctx.settings.lpv, b.min, b.max, ctx.settings.camera.eye);
+    mBoxes = lpvCascades(grid, b.min, b.max, ctx.settings.camera.eye);
     renderRSMs(ctx);
     inject(ctx);
     buildGeometry(ctx);
@@ -648,6 +660,24 @@ size_t LPV::passMemory(const std::string& pass) const {
 }
 
 size_t LPV::memoryBytes() const { return mRSMBytes + mVolumeBytes + mGeometryBytes; }
+
+PassReport LPV::report(const FrameSettings& fs) const {
+    PassReport r;
+    if (!mResolution) return r;
+    const bool fitted = fs.lpv.fitGrid && fs.lpv.cascadeCount == 1 && fs.lpv.cascadeExtent <= 0.0f;
+    r.numbers = {{"gridResolution", double(mResolution)}};
+    if (fitted && mFreePath.rays > 0) {
+        r.numbers.push_back({"meanSurfaceGap", double(mFreePath.meanHitDistance)});
+        r.numbers.push_back({"surfaceGapRays", double(mFreePath.rays)});
+        r.numbers.push_back({"surfaceGapHitFraction", double(mFreePath.hitFraction)});
+        char line[160];
+        std::snprintf(line, sizeof line, "%d^3, fitted: surfaces %.3g apart on average (%.1f cells), at most %d^3", mResolution,
+                      double(mFreePath.meanHitDistance), double(mFreePath.meanHitDistance / mFreePath.cubeSize * float(mResolution)),
+                      fs.lpv.gridResolution);
+        r.texts = {{"grid", line}};
+    }
+    return r;
+}
 
 std::vector<std::string> LPV::passNames(const FrameSettings&) const {
     return {"lpv.rsm", "lpv.inject", "lpv.geometry", "lpv.propagate", "lpv.shade"};

@@ -14,7 +14,11 @@ struct LPVSettings {
     static std::unique_ptr<Pass> createPass();
     static size_t estimateBytes(const FrameSettings& fs);
     static std::string notes(const FrameSettings& fs);
-    int gridResolution = 32;      // cells per side of every cascade
+    int gridResolution = 32;      // cells per side of every cascade (with fitGrid, the finest the fit may choose)
+    // One scene-fitted grid (one cascade, cascadeExtent 0) takes as few cells as keep the mean
+    // distance between the scene's surfaces kLPVFitCellsPerGap cells long, from kLPVFitMinCells
+    // up to gridResolution (lpv.h, "Fitted grid"): a closed room gets 24^3, Sponza 32^3.
+    bool fitGrid = true;
     int cascadeCount = 1;         // nested grids, each twice the size of the previous
     float cascadeExtent = 0.0f;   // world size of the finest cascade; 0 fits the scene (see lpv.h)
     int propagationSteps = 32;    // gather iterations; light travels one cell per step, so about gridResolution
@@ -29,6 +33,8 @@ struct LPVSettings {
     template <class V>
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Cells per side of each cascade", "cells", 4, 256, Cost::Reallocate, 1});
+        v(fitGrid, {"fitGrid", "One grid over the scene: as coarse as 24 cells while the mean distance between surfaces spans 4 cells", "",
+                    0, 0, Cost::Reallocate});
         v(cascadeCount, {"cascadeCount", "Number of nested cascades, each doubling the extent", "", 1, 4, Cost::Reallocate});
         v(cascadeExtent, forDevelopers({"cascadeExtent", "World size of the finest cascade (0: fit the scene)", "m", 0, 1e5}));
         v(propagationSteps, {"propagationSteps", "Propagation iterations (light moves one cell per step)", "", 0, 512});

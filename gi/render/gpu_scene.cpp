@@ -9,7 +9,7 @@
 namespace gi {
 
 GPUScene::GPUScene(const Scene& scene)
-    : mDraws(scene.draws), mMaterials(scene.materials), mEmitters(scene.emitters), mBounds(scene.bounds) {
+    : mDraws(scene.draws), mMaterials(scene.materials), mEmitters(scene.emitters), mBounds(scene.bounds), mFreePath(meanFreePath(scene)) {
     static uint64_t sCount = 0;
     mId = ++sCount;
     mVertices = gl::createBuffer(scene.vertices.size() * sizeof(Vertex), scene.vertices.data());

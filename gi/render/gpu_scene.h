@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gi/gl/handle.h"
+#include "gi/scene/free_path.h"
 #include "gi/scene/scene.h"
 
 #include <glm/glm.hpp>
@@ -82,6 +83,9 @@ public:
     uint64_t id() const { return mId; }
     size_t memoryBytes() const { return mBytes; }
     const Bounds& bounds() const { return mBounds; }
+    // How far light travels between the scene's surfaces (gi/scene/free_path.h), measured once
+    // at upload: LPV fits its grid to it.
+    const FreePath& freePath() const { return mFreePath; }
     // The scene's emissive surfaces (Scene::emitters), which area lights name.
     const std::vector<Emitter>& emitters() const { return mEmitters; }
     // Binds the per-triangle emitter index at light::kTriangleEmitterBinding.
@@ -106,6 +110,7 @@ private:
     std::vector<Emitter> mEmitters;
     gl::Buffer mTriangleEmitter;
     Bounds mBounds;
+    FreePath mFreePath;
     size_t mBytes = 0;
     uint64_t mId = 0;
 };
