@@ -145,6 +145,12 @@ TEST(RenderCLI, LPVViewsAndPointLightCube) {
     for (size_t i = 0; i < cross.rgba.size(); i += 4) lit += cross.rgba[i] + cross.rgba[i + 1] + cross.rgba[i + 2] > 30;
     // Six of the cross's twelve cells are faces; the Cornell box fills them but for its open front.
     EXPECT_GT(lit, cross.rgba.size() / 4 / 4) << "the cube RSM cross is (nearly) black";
+    // The built-in Cornell box, a closed room but for its front, gets the coarsest fitted grid,
+    // and stats.json says so and why.
+    json pointStats = readJSON(dir / "o" / "stats.json");
+    EXPECT_EQ(pointStats["lpv"]["gridResolution"].get<double>(), 24.0) << pointStats["lpv"].dump();
+    EXPECT_GT(pointStats["lpv"]["meanSurfaceGap"].get<double>(), 0.5);
+    EXPECT_NE(pointStats["lpv"]["grid"].get<std::string>().find("fitted"), std::string::npos);
 }
 
 TEST(RenderCLI, GLTFInputWithItsCamera) {

@@ -283,6 +283,7 @@ void Editor::collectResult() {
     }
     ++mOutputGeneration;
     mPassStats = mRenderer.passStats();
+    mPassReports = mRenderer.passReports(frameSettings(mGoodPreset, mScene, mRenderSize.x, mRenderSize.y));
     mMemoryBytes = mRenderer.memoryBytes();
     mPickPending = true;  // the focus pixel's surface, of the new frame
 }
@@ -862,6 +863,9 @@ void Editor::passExtras(std::string_view section, const FrameSettings& fs, const
     if (!info || !passActive(*info, fs)) return;
     if (info->notes)
         if (std::string note = info->notes(fs); !note.empty()) wrappedText(kWarningColor, note);
+    for (const auto& [name, report] : mPassReports)
+        if (name == section)
+            for (const auto& [key, text] : report.texts) ImGui::TextWrapped("%s: %s", key.c_str(), text.c_str());
     // The pass's previewers are named after its section.
     const std::string prefix = std::string(section) + ".";
     bool any = false;

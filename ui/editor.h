@@ -162,6 +162,8 @@ private:
     std::vector<GlyphLine> mOverlayLines;
     glm::mat4 mOverlayViewProj{1.0f};
     std::vector<PassStats> mPassStats;
+    // What each pass reports of the last frame (LPV's fitted grid), shown in its section.
+    std::vector<std::pair<std::string, PassReport>> mPassReports;
     size_t mMemoryBytes = 0;
     // The passes' own panels (ui/pass_panels.cpp), by section.
     std::vector<std::pair<std::string_view, std::unique_ptr<PassPanel>>> mPanels;
