@@ -33,8 +33,9 @@ struct LPVSettings {
     template <class V>
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Cells per side of each cascade", "cells", 4, 256, Cost::Reallocate, 1});
-        v(fitGrid, {"fitGrid", "One grid over the scene: as coarse as 24 cells while the mean distance between surfaces spans 4 cells", "",
-                    0, 0, Cost::Reallocate});
+        // A developer setting, so auto-tune spends its renders on the grid, cascades and steps.
+        v(fitGrid, forDevelopers({"fitGrid", "One grid over the scene: as coarse as 24 cells while the mean distance between surfaces spans 4 cells",
+                                  "", 0, 0, Cost::Reallocate}));
         v(cascadeCount, {"cascadeCount", "Number of nested cascades, each doubling the extent", "", 1, 4, Cost::Reallocate});
         v(cascadeExtent, forDevelopers({"cascadeExtent", "World size of the finest cascade (0: fit the scene)", "m", 0, 1e5}));
         v(propagationSteps, {"propagationSteps", "Propagation iterations (light moves one cell per step)", "", 0, 512});
