@@ -76,3 +76,23 @@ TEST(FreePath, LPVFitsItsGridToTheFreePath) {
     extent.cascadeExtent = 5.0f;
     for (const LPVSettings* t : {&off, &cascades, &extent}) EXPECT_EQ(lpvGridResolution(*t, room), s.gridResolution);
 }
+
+// Work is bounded whatever the file holds: 4000 more floor triangles, each half the floor, would
+// mark 130 million points half a cell apart; the budget spreads them, and the room still reads
+// as closed (most rays now leave the floor, so the mean is the floor's, not the room's).
+TEST(FreePath, ManyLargeTrianglesStayWithinThePointBudget) {
+    Scene room = test::closedRoom();
+    FreePath plain = meanFreePath(room);
+    std::printf("closed room: %zu points\n", plain.points);
+    EXPECT_LT(plain.points, kFreePathPointBudget);
+    const std::vector<uint32_t> floor(room.indices.begin(), room.indices.begin() + 6);  // the floor quad's two triangles
+    for (int copy = 0; copy < 2000; ++copy) room.indices.insert(room.indices.end(), floor.begin(), floor.end());
+    room.draws.back().indexCount += 2000 * 6;
+    room.finalize();
+    FreePath crowded = meanFreePath(room);
+    std::printf("with 4000 more floor triangles: %zu points, mean %.3f m (%.3f alone)\n", crowded.points, crowded.meanHitDistance,
+                plain.meanHitDistance);
+    const size_t largestTriangle = size_t(4 * kFreePathGrid + 1) * size_t(4 * kFreePathGrid + 2) / 2;  // its points
+    EXPECT_LE(crowded.points, kFreePathPointBudget + largestTriangle) << "the budget, and the triangle that crossed it";
+    EXPECT_GT(crowded.hitFraction, 0.99f) << "the spread points left holes in the walls";
+}

@@ -670,6 +670,7 @@ PassReport LPV::report(const FrameSettings& fs) const {
         r.numbers.push_back({"meanSurfaceGap", double(mFreePath.meanHitDistance)});
         r.numbers.push_back({"surfaceGapRays", double(mFreePath.rays)});
         r.numbers.push_back({"surfaceGapHitFraction", double(mFreePath.hitFraction)});
+        r.numbers.push_back({"surfaceGapPoints", double(mFreePath.points)});
         char line[160];
         std::snprintf(line, sizeof line, "%d^3, fitted: surfaces %.3g apart on average (%.1f cells), at most %d^3", mResolution,
                       double(mFreePath.meanHitDistance), double(mFreePath.meanHitDistance / mFreePath.cubeSize * float(mResolution)),

@@ -36,12 +36,21 @@ struct Grid {
     }
 };
 
-// Every cell the triangle touches, from points at most half a cell apart.
-void markTriangle(Grid& g, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+// The subdivisions of a triangle whose points lie at most `spacing` apart, and the points that makes.
+int subdivisions(glm::vec3 a, glm::vec3 b, glm::vec3 c, float spacing) {
     float edge = std::max(glm::length(b - a), std::max(glm::length(c - b), glm::length(a - c)));
-    int n = std::clamp(int(std::ceil(edge / (0.5f * g.cell))), 1, 4 * kFreePathGrid);
+    float n = std::ceil(edge / spacing);
+    return n >= 1.0f ? int(std::min(n, float(4 * kFreePathGrid))) : 1;  // NaN-safe
+}
+size_t trianglePoints(int n) { return size_t(n + 1) * size_t(n + 2) / 2; }
+
+// Every cell the triangle touches, from points `spacing` apart (half a cell unless the scene's
+// area is too large for the point budget).
+size_t markTriangle(Grid& g, glm::vec3 a, glm::vec3 b, glm::vec3 c, float spacing) {
+    int n = subdivisions(a, b, c, spacing);
     for (int i = 0; i <= n; ++i)
         for (int j = 0; i + j <= n; ++j) g.mark(a + (b - a) * (float(i) / float(n)) + (c - a) * (float(j) / float(n)));
+    return trianglePoints(n);
 }
 
 // Where the ray o + t d leaves the cube (o inside it).
@@ -109,12 +118,19 @@ FreePath meanFreePath(const Scene& scene) {
     for (const Draw& d : scene.draws)
         if (d.material >= 0 && size_t(d.material) < scene.materials.size() && scene.materials[size_t(d.material)].doubleSided)
             for (uint32_t i = d.firstIndex / 3; i < (d.firstIndex + d.indexCount) / 3 && i < triangles; ++i) twoSided[i] = 1;
+    auto corner = [&](size_t t, int k) { return scene.vertices[scene.indices[3 * t + size_t(k)]].position; };
+    // Half a cell between points, unless that makes more than kFreePathPointBudget (many large
+    // triangles, as a hostile file may hold): then a spacing that fits, which may leave holes in
+    // the occupancy and so read the free path long, towards the techniques' own resolution.
+    float spacing = 0.5f * g.cell;
+    double points = 0.0;
+    for (size_t t = 0; t < triangles; ++t) points += double(trianglePoints(subdivisions(corner(t, 0), corner(t, 1), corner(t, 2), spacing)));
+    if (points > double(kFreePathPointBudget)) spacing *= float(std::sqrt(points / double(kFreePathPointBudget)));
     std::vector<double> cumulative(triangles);
     double area = 0.0;
     for (size_t t = 0; t < triangles; ++t) {
-        glm::vec3 a = scene.vertices[scene.indices[3 * t]].position, b = scene.vertices[scene.indices[3 * t + 1]].position,
-                  c = scene.vertices[scene.indices[3 * t + 2]].position;
-        markTriangle(g, a, b, c);
+        glm::vec3 a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
+        if (result.points < kFreePathPointBudget) result.points += markTriangle(g, a, b, c, spacing);
         area += 0.5 * double(glm::length(glm::cross(b - a, c - a)));
         cumulative[t] = area;
     }
