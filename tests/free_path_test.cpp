@@ -53,21 +53,29 @@ TEST(FreePath, TheFitIsTheSameAtAnyScale) {
     }
 }
 
-// The fit: closed rooms take the coarsest grid, the settings that ask for a given grid get it.
+// The fit: a small closed room takes the coarsest grid, the two-room scene (twice as long, its
+// rooms' gap spanning fewer cells) the next step, and settings that ask for a given grid get it.
 TEST(FreePath, LPVFitsItsGridToTheFreePath) {
     LPVSettings s;
     FreePath room = meanFreePath(test::closedRoom()), rooms = meanFreePath(test::twoRooms());
     EXPECT_EQ(lpvGridResolution(s, room), kLPVFitMinCells);
-    EXPECT_EQ(lpvGridResolution(s, rooms), kLPVFitMinCells);
-    // The rule: the coarsest grid on which the mean gap spans kLPVFitCellsPerGap cells.
-    FreePath dense = room;
-    dense.meanHitDistance = dense.cubeSize * kLPVFitCellsPerGap / 28.5f;
-    EXPECT_EQ(lpvGridResolution(s, dense), 29);
-    dense.meanHitDistance = dense.cubeSize / 20.0f;  // 80 cells wanted, 32 the finest allowed
-    EXPECT_EQ(lpvGridResolution(s, dense), s.gridResolution);
-    // Never finer than asked: a 16^3 grid stays 16^3.
+    EXPECT_EQ(lpvGridResolution(s, rooms), kLPVFitMinCells + kLPVFitStep);
+    // The rule: the coarsest grid, in steps of kLPVFitStep, on which the mean gap spans
+    // kLPVFitCellsPerGap cells.
+    FreePath path = room;
+    path.meanHitDistance = path.cubeSize * kLPVFitCellsPerGap / 16.5f;  // 16.5 cells wanted
+    EXPECT_EQ(lpvGridResolution(s, path), 24);
+    path.meanHitDistance = path.cubeSize * kLPVFitCellsPerGap / 24.0f;  // exactly 24
+    EXPECT_EQ(lpvGridResolution(s, path), 24);
+    path.meanHitDistance = path.cubeSize / 20.0f;  // 120 cells wanted, 32 the finest allowed
+    EXPECT_EQ(lpvGridResolution(s, path), s.gridResolution);
+    // Never finer than asked: a 16^3 grid stays 16^3, a 20^3 one may be 16^3 or 20^3.
     LPVSettings coarse = s;
     coarse.gridResolution = 16;
+    EXPECT_EQ(lpvGridResolution(coarse, room), 16);
+    coarse.gridResolution = 20;
+    path.meanHitDistance = path.cubeSize * kLPVFitCellsPerGap / 18.0f;
+    EXPECT_EQ(lpvGridResolution(coarse, path), 20);
     EXPECT_EQ(lpvGridResolution(coarse, room), 16);
     // Off, or with cascades or a set extent, the grid is the one asked for.
     LPVSettings off = s, cascades = s, extent = s;

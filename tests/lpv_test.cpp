@@ -204,8 +204,8 @@ TEST_F(LPVGL, GeometryVolumeCutsTheLeakThroughAThinWall) {
     double litDefault = test::meanIndirect(r, d);
     d.camera.eye = {1.9f, 1.0f, 0.0f};
     double leakDefault = test::meanIndirect(r, d);
-    std::printf("with the defaults (%d^3, %d steps, %d bounces): dark room %.5f, lit room %.5f (%.1f %%)\n",
-                d.lpv.gridResolution, d.lpv.propagationSteps, d.lpv.bounces, leakDefault, litDefault,
+    std::printf("with the defaults (%d^3 fitted, %d steps, %d bounces): dark room %.5f, lit room %.5f (%.1f %%)\n",
+                lpvGridResolution(d.lpv, meanFreePath(scene)), d.lpv.propagationSteps, d.lpv.bounces, leakDefault, litDefault,
                 100.0 * leakDefault / litDefault);
     EXPECT_LT(leakDefault, 0.05 * litDefault) << "the closed room takes more than 5 % of the lit room's indirect light";
 }
@@ -394,7 +394,7 @@ TEST_F(LPVGL, PointLightAgreesWithASpotOverTheFacesItCovers) {
 
 // A point light in a closed room: the LPV's one bounce (lpv.bounces 1) against the path tracer's
 // one bounce (maxBounces 2, paths of exactly two surface bounces), diffuse only on both sides, at
-// the defaults (the fitted grid: 24^3 in this room, 1.14), at 32^3 and at 64^3 with as many steps
+// the defaults (the fitted grid: 16^3 in this room, 1.21), at 32^3 and at 64^3 with as many steps
 // (the settings' rule). Without
 // kLPVRadianceScale (the kernel's first-step flux gain, tests/lpv_propagation_test.cpp) the LPV
 // read 1.27 and 1.17; with it, 1.12 and 1.03. It reads high where light lingers near the walls

@@ -148,7 +148,7 @@ TEST(RenderCLI, LPVViewsAndPointLightCube) {
     // The built-in Cornell box, a closed room but for its front, gets the coarsest fitted grid,
     // and stats.json says so and why.
     json pointStats = readJSON(dir / "o" / "stats.json");
-    EXPECT_EQ(pointStats["lpv"]["gridResolution"].get<double>(), 24.0) << pointStats["lpv"].dump();
+    EXPECT_EQ(pointStats["lpv"]["gridResolution"].get<double>(), 16.0) << pointStats["lpv"].dump();
     EXPECT_GT(pointStats["lpv"]["meanSurfaceGap"].get<double>(), 0.5);
     EXPECT_NE(pointStats["lpv"]["grid"].get<std::string>().find("fitted"), std::string::npos);
 }

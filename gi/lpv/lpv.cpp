@@ -129,8 +129,9 @@ size_t LPV::estimateBytes(const FrameSettings& fs) {
 int lpvGridResolution(const LPVSettings& s, const FreePath& path) {
     if (!s.fitGrid || s.cascadeCount != 1 || s.cascadeExtent > 0.0f || !(path.meanHitDistance > 0.0f)) return s.gridResolution;
     const float cells = kLPVFitCellsPerGap * path.cubeSize / path.meanHitDistance;
-    const int coarsest = std::min(kLPVFitMinCells, s.gridResolution);
-    return cells >= float(s.gridResolution) ? s.gridResolution : std::max(coarsest, int(std::ceil(cells)));
+    if (!(cells < float(s.gridResolution))) return s.gridResolution;
+    const int rounded = int(std::ceil(cells / float(kLPVFitStep))) * kLPVFitStep;
+    return std::clamp(rounded, std::min(kLPVFitMinCells, s.gridResolution), s.gridResolution);
 }
 
 void LPV::allocate(const FrameSettings& fs, uint8_t changes, int resolution) {

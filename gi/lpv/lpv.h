@@ -132,27 +132,33 @@ std::string lpvIgnoredLights(const std::vector<LightSettings>& lights);
 // 96 steps; on 16^3 it is lit. Sponza needs the finer grid the other way: on 16^3 (3.3 m cells)
 // its arcades fill with light through walls and pillars thinner than a cell. The fit keys on the
 // mean distance between surfaces (GPUScene::freePath(), rays leaving the surfaces): the coarsest
-// grid, from kLPVFitMinCells up to gridResolution, on which that distance spans
-// kLPVFitCellsPerGap cells. Closed rooms get kLPVFitMinCells (their mean gap is a third to two
-// thirds of their size), Sponza and open scenes 32^3 (a tenth of their size, or few rays meet a
-// surface again). Why 24 and not 16, which lights rooms better still: on 16^3 the two-room
-// scene's closed room takes 5.1 % of the lit room's light, over issue 13's 5 % (3.5 % on 24^3 and
-// on 32^3, LPVGL.GeometryVolumeCutsTheLeakThroughAThinWall). Tried against that leak and not
-// kept: a shading stencil that weighs each neighbour cell by the face transmittance between
-// (4.8 %; rooms lost up to 0.015 SSIM), every Opaque triangle of the scene in the geometry volume
-// (4.4 %; the corridor below lost 0.12, a room with three lights 0.04), occlusionStrength 2
-// (1.7 %; the corridor lost 0.05). Scenes without a preset, 128x96 against the path tracer, SSIM
-// at 32^3 / 24^3 / 16^3 (32 propagation steps): CornellBox-Empty-CO 0.748 / 0.803 / 0.838,
-// -Empty-RG 0.726 / 0.765 / 0.795, -Squashed 0.733 / 0.747 / 0.772, -Mirror 0.601 / 0.611 /
-// 0.625, -Water 0.695 / 0.703 / 0.717, -Original 0.713 / 0.739 / 0.790, -Sphere 0.663 / 0.675 /
-// 0.693, -Glossy 0.703 / 0.730 / 0.764, -Empty-White 0.652 / 0.727 / 0.772; hand-made rooms: a
-// furnished 6 x 3 x 5 m room 0.817 / 0.852 / 0.878, a 12 x 3 x 12 m hall 0.646 / 0.696 / 0.726,
-// a 4 x 3 x 4 m room lit by a point 0.747 / 0.775 / 0.822, three lights 0.726 / 0.775 / 0.862.
-// Kept at 32^3 by the fit: Sponza (0.761; 0.722 on 24^3, 0.584 on 16^3), basic (0.951), an open
-// street (0.872), a 20 m corridor (0.780; 0.690 on 24^3). The propagation's work falls with the
-// cells: 24^3 is 0.42 of 32^3's cell-steps.
-constexpr int kLPVFitMinCells = 24;
-constexpr float kLPVFitCellsPerGap = 4.0f;
+// grid, from kLPVFitMinCells up to gridResolution in steps of kLPVFitStep, on which that distance
+// spans kLPVFitCellsPerGap cells. A closed room's mean gap is a third to two thirds of its size,
+// so small rooms get 16^3, the two-room scene and larger rooms 24^3; in Sponza and open scenes it
+// is a tenth of their size, or few rays meet a surface again, and they keep 32^3. Why 6 cells
+// and steps of 8: with 4 cells and no steps (any size from 16 up) the two-room scene took 16^3,
+// where its closed room gets 5.1 % of the lit room's light, over issue 13's 5 % (3.5 % on 24^3,
+// as on 32^3; 4.0 % on 20^3; LPVGL.GeometryVolumeCutsTheLeakThroughAThinWall), and sizes
+// between the steps scored erratically, where a wall falls in the cells mattering more than the
+// size (a 12 x 3 x 12 m hall 0.726 / 0.636 / 0.645 / 0.696 on 16 / 20 / 23 / 24^3, a furnished
+// room 0.878 / 0.829 / 0.852 on 16 / 19 / 24^3). Tried against the leak and not kept: a shading
+// stencil that weighs each neighbour cell by the face transmittance between (4.8 % on 16^3; rooms
+// lost up to 0.015 SSIM), every Opaque triangle of the scene in the geometry volume (4.4 %; a
+// corridor lost 0.12, a room with three lights 0.04), occlusionStrength 2 (1.7 %; the corridor
+// lost 0.05). Scenes without a preset, 128x96 against the path tracer, SSIM at 32^3 / 24^3 / 16^3
+// (32 propagation steps), the fit's in brackets: CornellBox-Empty-CO 0.748 / 0.803 / 0.838 (16),
+// -Empty-RG 0.726 / 0.765 / 0.795 (16), -Squashed 0.733 / 0.747 / 0.772 (16), -Mirror 0.601 /
+// 0.611 / 0.625 (16), -Water 0.695 / 0.703 / 0.717 (24), -Original 0.713 / 0.739 / 0.790 (16),
+// -Sphere 0.663 / 0.675 / 0.693 (16), -Glossy 0.703 / 0.730 / 0.764 (16), -Empty-White 0.652 /
+// 0.727 / 0.772 (16); hand-made rooms: 4 x 3 x 4 m lit by a point 0.747 / 0.775 / 0.822 (16), by
+// an emissive panel 0.811 / 0.841 / 0.877 (16), a furnished 6 x 3 x 5 m room 0.817 / 0.852 /
+// 0.878 (24), three lights 0.726 / 0.775 / 0.862 (24), the 12 m hall 0.646 / 0.696 / 0.726 (24).
+// Kept at 32^3: Sponza (0.761; 0.722 on 24^3, 0.584 on 16^3), basic (0.951), an open street
+// (0.872), a 20 m corridor (0.780; 0.690 on 24^3), a colonnade (0.799). The propagation's work
+// falls with the cells: 24^3 is 0.42 and 16^3 0.125 of 32^3's cell-steps.
+constexpr int kLPVFitMinCells = 16;
+constexpr float kLPVFitCellsPerGap = 6.0f;
+constexpr int kLPVFitStep = 8;
 
 // The grid resolution a frame uses: gridResolution, or the fit above.
 int lpvGridResolution(const LPVSettings& s, const FreePath& path);

@@ -17,7 +17,8 @@ struct LPVSettings {
     int gridResolution = 32;      // cells per side of every cascade (with fitGrid, the finest the fit may choose)
     // One scene-fitted grid (one cascade, cascadeExtent 0) takes as few cells as keep the mean
     // distance between the scene's surfaces kLPVFitCellsPerGap cells long, from kLPVFitMinCells
-    // up to gridResolution (lpv.h, "Fitted grid"): a closed room gets 24^3, Sponza 32^3.
+    // up to gridResolution in steps of kLPVFitStep (lpv.h, "Fitted grid"): a small closed room gets
+    // 16^3, the two-room scene 24^3, Sponza 32^3.
     bool fitGrid = true;
     int cascadeCount = 1;         // nested grids, each twice the size of the previous
     float cascadeExtent = 0.0f;   // world size of the finest cascade; 0 fits the scene (see lpv.h)
@@ -34,7 +35,7 @@ struct LPVSettings {
     void visit(V&& v) {
         v(gridResolution, {"gridResolution", "Cells per side of each cascade", "cells", 4, 256, Cost::Reallocate, 1});
         // A developer setting, so auto-tune spends its renders on the grid, cascades and steps.
-        v(fitGrid, forDevelopers({"fitGrid", "One grid over the scene: as coarse as 24 cells while the mean distance between surfaces spans 4 cells",
+        v(fitGrid, forDevelopers({"fitGrid", "One grid over the scene: as coarse as 16 cells, in steps of 8, while the mean distance between surfaces spans 6 cells",
                                   "", 0, 0, Cost::Reallocate}));
         v(cascadeCount, {"cascadeCount", "Number of nested cascades, each doubling the extent", "", 1, 4, Cost::Reallocate});
         v(cascadeExtent, forDevelopers({"cascadeExtent", "World size of the finest cascade (0: fit the scene)", "m", 0, 1e5}));
