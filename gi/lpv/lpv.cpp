@@ -69,11 +69,12 @@ std::vector<CascadeBox> lpvCascades(const LPVSettings& s, const glm::vec3& scene
     glm::vec3 size = sceneMax - sceneMin;
     float sceneSize = std::max(std::max(size.x, size.y), std::max(size.z, 1e-3f));
     if (s.cascadeCount == 1 && s.cascadeExtent <= 0.0f) {
-        // One grid: the scene's bounding cube, a little larger so surfaces on the bounds are inside.
+        // One grid: the scene's grid cube.
+        const Bounds bounds{sceneMin, sceneMax};
         CascadeBox b;
-        b.extent = sceneSize * 1.02f;
+        b.extent = bounds.gridCubeSize();
         b.cellSize = b.extent / float(s.gridResolution);
-        b.min = 0.5f * (sceneMin + sceneMax) - glm::vec3(0.5f * b.extent);
+        b.min = bounds.gridCubeMin();
         boxes.push_back(b);
         return boxes;
     }
@@ -126,8 +127,10 @@ size_t LPV::estimateBytes(const FrameSettings& fs) {
     return perCascade * size_t(s.cascadeCount) + rsm;
 }
 
+bool lpvFitsGrid(const LPVSettings& s) { return s.fitGrid && s.cascadeCount == 1 && s.cascadeExtent <= 0.0f; }
+
 int lpvGridResolution(const LPVSettings& s, const FreePath& path) {
-    if (!s.fitGrid || s.cascadeCount != 1 || s.cascadeExtent > 0.0f || !(path.meanHitDistance > 0.0f)) return s.gridResolution;
+    if (!lpvFitsGrid(s) || !(path.meanHitDistance > 0.0f)) return s.gridResolution;
     const float cells = kLPVFitCellsPerGap * path.cubeSize / path.meanHitDistance;
     if (!(cells < float(s.gridResolution))) return s.gridResolution;
     const int rounded = int(std::ceil(cells / float(kLPVFitStep))) * kLPVFitStep;
@@ -665,9 +668,8 @@ size_t LPV::memoryBytes() const { return mRSMBytes + mVolumeBytes + mGeometryByt
 PassReport LPV::report(const FrameSettings& fs) const {
     PassReport r;
     if (!mResolution) return r;
-    const bool fitted = fs.lpv.fitGrid && fs.lpv.cascadeCount == 1 && fs.lpv.cascadeExtent <= 0.0f;
     r.numbers = {{"gridResolution", double(mResolution)}};
-    if (fitted && mFreePath.rays > 0) {
+    if (lpvFitsGrid(fs.lpv) && mFreePath.rays > 0) {
         r.numbers.push_back({"meanSurfaceGap", double(mFreePath.meanHitDistance)});
         r.numbers.push_back({"surfaceGapRays", double(mFreePath.rays)});
         r.numbers.push_back({"surfaceGapHitFraction", double(mFreePath.hitFraction)});

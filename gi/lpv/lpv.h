@@ -160,6 +160,8 @@ constexpr int kLPVFitMinCells = 16;
 constexpr float kLPVFitCellsPerGap = 6.0f;
 constexpr int kLPVFitStep = 8;
 
+// Whether the settings let the grid be fitted: fitGrid, one cascade, no set extent.
+bool lpvFitsGrid(const LPVSettings& s);
 // The grid resolution a frame uses: gridResolution, or the fit above.
 int lpvGridResolution(const LPVSettings& s, const FreePath& path);
 

@@ -7,6 +7,7 @@
 #include "gi/render/lights.h"
 #include "gi/scene/camera.h"
 #include "gi/util/error.h"
+#include "gi/util/sampling.h"
 #include "gi/volumetric/medium.h"
 
 #include <embree3/rtcore.h>
@@ -26,25 +27,6 @@ namespace {
 
 using shared::kPi;
 
-// PCG32 (O'Neill 2014): small state, good quality, cheap to seed per sample.
-struct PCG32 {
-    uint64_t state = 0, inc = 1;
-    PCG32(uint64_t seed, uint64_t stream) {
-        inc = (stream << 1u) | 1u;
-        next();
-        state += seed;
-        next();
-    }
-    uint32_t next() {
-        uint64_t old = state;
-        state = old * 6364136223846793005ULL + inc;
-        uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
-        uint32_t rot = uint32_t(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((-rot) & 31));
-    }
-    float uniform() { return float(next() >> 8) * 0x1p-24f; }
-};
-
 uint64_t mix64(uint64_t x) {
     x ^= x >> 33;
     x *= 0xff51afd7ed558ccdULL;
@@ -63,15 +45,6 @@ using ggx::D_GGX;
 using ggx::F_Schlick;
 using ggx::G1_GGX;
 using ggx::V_SmithGGXCorrelated;
-
-// An orthonormal basis around n (Duff et al. 2017).
-void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-    float sign = std::copysign(1.0f, n.z);
-    float a = -1.0f / (sign + n.z);
-    float bb = n.x * n.y * a;
-    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x);
-    b = glm::vec3(bb, sign + n.y * n.y * a, -n.y);
-}
 
 // Surface properties at a hit, everything in world space.
 struct Surface {

@@ -1,5 +1,7 @@
 #include "gi/scene/free_path.h"
 
+#include "gi/util/sampling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,19 +10,6 @@
 namespace gi {
 
 namespace {
-
-// PCG32 (O'Neill 2014): the same numbers on every platform, unlike the standard distributions.
-struct Random {
-    uint64_t state = 0x853c49e6748fea9bULL;
-    uint32_t next() {
-        uint64_t old = state;
-        state = old * 6364136223846793005ULL + 1442695040888963407ULL;
-        uint32_t shifted = uint32_t(((old >> 18u) ^ old) >> 27u);
-        uint32_t rot = uint32_t(old >> 59u);
-        return (shifted >> rot) | (shifted << ((32u - rot) & 31u));
-    }
-    float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }  // [0, 1)
-};
 
 struct Grid {
     glm::vec3 min{0.0f};
@@ -64,28 +53,27 @@ float exitDistance(const Grid& g, glm::vec3 o, glm::vec3 d) {
     return std::max(t, 0.0f);
 }
 
-// The distance from o along unit d, starting at t0, to the first occupied cell (Amanatides and
-// Woo's traversal), or to the cube's boundary; `hit` says which.
-float march(const Grid& g, glm::vec3 o, glm::vec3 d, float t0, bool& hit) {
+// The distance from o along unit d to the first occupied cell (Amanatides and Woo's traversal),
+// or to the cube's boundary; `hit` says which.
+float march(const Grid& g, glm::vec3 o, glm::vec3 d, bool& hit) {
     hit = false;
     float tExit = exitDistance(g, o, d);
-    if (t0 >= tExit) return tExit;
-    glm::vec3 p = o + d * t0;
-    glm::ivec3 c = glm::clamp(g.cellOf(p), glm::ivec3(0), glm::ivec3(g.n - 1));
+    if (tExit <= 0.0f) return tExit;
+    glm::ivec3 c = glm::clamp(g.cellOf(o), glm::ivec3(0), glm::ivec3(g.n - 1));
     glm::ivec3 step(0);
     glm::vec3 tMax(1e30f), tDelta(1e30f);
     for (int k = 0; k < 3; ++k) {
         if (d[k] > 0.0f) {
             step[k] = 1;
-            tMax[k] = t0 + (g.min[k] + float(c[k] + 1) * g.cell - p[k]) / d[k];
+            tMax[k] = (g.min[k] + float(c[k] + 1) * g.cell - o[k]) / d[k];
             tDelta[k] = g.cell / d[k];
         } else if (d[k] < 0.0f) {
             step[k] = -1;
-            tMax[k] = t0 + (g.min[k] + float(c[k]) * g.cell - p[k]) / d[k];
+            tMax[k] = (g.min[k] + float(c[k]) * g.cell - o[k]) / d[k];
             tDelta[k] = -g.cell / d[k];
         }
     }
-    float t = t0;
+    float t = 0.0f;
     while (g.inside(c) && t < tExit) {
         if (g.occupied[g.index(c)]) {
             hit = true;
@@ -103,12 +91,12 @@ float march(const Grid& g, glm::vec3 o, glm::vec3 d, float t0, bool& hit) {
 
 FreePath meanFreePath(const Scene& scene) {
     FreePath result;
-    const glm::vec3 extent = scene.bounds.max - scene.bounds.min;
-    const float size = std::max(extent.x, std::max(extent.y, extent.z)) * 1.02f;
-    if (!(size > 0.0f) || !std::isfinite(size)) return result;
+    if (!scene.bounds.valid()) return result;
+    const float size = scene.bounds.gridCubeSize();
+    if (!std::isfinite(size)) return result;
     Grid g;
     g.cell = size / float(g.n);
-    g.min = 0.5f * (scene.bounds.min + scene.bounds.max) - glm::vec3(0.5f * size);
+    g.min = scene.bounds.gridCubeMin();
     g.occupied.assign(size_t(g.n) * size_t(g.n) * size_t(g.n), 0);
     result.cubeSize = size;
 
@@ -136,15 +124,14 @@ FreePath meanFreePath(const Scene& scene) {
     }
     if (!(area > 0.0)) return result;
 
-    Random rng;
+    PCG32 rng(0, 0);
     double sum = 0.0, hitSum = 0.0;
     int hits = 0;
     for (int r = 0; r < kFreePathRays; ++r) {
         double pick = double(rng.uniform()) * area;
         size_t t = size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
         t = std::min(t, triangles - 1);
-        glm::vec3 a = scene.vertices[scene.indices[3 * t]].position, b = scene.vertices[scene.indices[3 * t + 1]].position,
-                  c = scene.vertices[scene.indices[3 * t + 2]].position;
+        glm::vec3 a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
         glm::vec3 n = glm::cross(b - a, c - a);
         float len = glm::length(n);
         if (!(len > 0.0f)) continue;  // a zero-area triangle is never picked; guards rounding
@@ -160,15 +147,15 @@ FreePath meanFreePath(const Scene& scene) {
         // Cosine-distributed direction about n.
         float u1 = rng.uniform(), phi = 6.28318531f * rng.uniform();
         float sinTheta = std::sqrt(u1), cosTheta = std::sqrt(1.0f - u1);
-        glm::vec3 helper = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-        glm::vec3 tx = glm::normalize(glm::cross(helper, n)), ty = glm::cross(n, tx);
+        glm::vec3 tx, ty;
+        basis(n, tx, ty);
         glm::vec3 d = glm::normalize(tx * (sinTheta * std::cos(phi)) + ty * (sinTheta * std::sin(phi)) + n * cosTheta);
         // Start 1.5 cells above the own surface, so the ray does not meet the cells it leaves
         // (leaving along the ray instead would start a grazing ray past a nearby wall, or back
         // in its own surface's cells), and measure from the surface point.
         glm::vec3 start = o + n * (1.5f * g.cell);
         bool hit = false;
-        float along = march(g, start, d, 0.0f, hit);
+        float along = march(g, start, d, hit);
         double dist = double(glm::length(start + d * along - o));
         sum += dist;
         if (hit) hitSum += dist;

@@ -7,7 +7,7 @@
 // the lit floor, stays black even after 96 steps, and on 16^3 it is lit. A scene's grid should
 // therefore span its typical free path in a bounded number of cells (gi/lpv/lpv.h, "Fitted grid").
 //
-// Method (deterministic): the scene's bounding cube (2 % larger, as the techniques' grids) is
+// Method (deterministic): the scene's grid cube (Bounds::gridCubeSize(), as the techniques' grids) is
 // cut into kFreePathGrid^3 cells, and every cell a triangle touches is marked (points on each
 // triangle at most half a cell apart). kFreePathRays rays then leave points on the surfaces,
 // chosen by area, on a random side, with cosine-distributed directions, and march the cells

@@ -95,6 +95,14 @@ struct Bounds {
     glm::vec3 extent() const { return max - min; }
     // Half the diagonal, at least 1 mm: the scale framing, light placement and grids fit to.
     float radius() const { return std::max(0.5f * glm::length(extent()), 1e-3f); }
+    // The cube a grid over the whole scene spans (LPV's single grid, VCT's dense grid, the free
+    // path's occupancy): the largest extent, at least 1 mm, 2 % larger so that surfaces on the
+    // bounds fall inside, centred on the bounds.
+    float gridCubeSize() const {
+        glm::vec3 e = extent();
+        return std::max(std::max(e.x, e.y), std::max(e.z, 1e-3f)) * 1.02f;
+    }
+    glm::vec3 gridCubeMin() const { return center() - glm::vec3(0.5f * gridCubeSize()); }
 };
 
 // Emissive triangles grouped into area lights when the scene loads (buildEmitters): connected

@@ -48,14 +48,13 @@ int vctMipCount(int resolution) {
 std::vector<VoxelBox> vctLevels(const VCTSettings& s, const glm::vec3& sceneMin, const glm::vec3& sceneMax,
                                 const glm::vec3& camera) {
     std::vector<VoxelBox> boxes;
-    glm::vec3 size = sceneMax - sceneMin;
-    float sceneSize = std::max(std::max(size.x, size.y), std::max(size.z, 1e-3f));
     int res = s.gridResolution;
     if (s.mode == VCTMode::Dense) {
         VoxelBox b;
-        float extent = s.levelExtent > 0.0f ? s.levelExtent : sceneSize * 1.02f;
+        const Bounds bounds{sceneMin, sceneMax};  // unset extent: the scene's grid cube
+        float extent = s.levelExtent > 0.0f ? s.levelExtent : bounds.gridCubeSize();
         b.cellSize = extent / float(res);
-        b.min = s.levelExtent > 0.0f ? camera - glm::vec3(0.5f * extent) : 0.5f * (sceneMin + sceneMax) - glm::vec3(0.5f * extent);
+        b.min = s.levelExtent > 0.0f ? camera - glm::vec3(0.5f * extent) : bounds.gridCubeMin();
         boxes.push_back(b);
         return boxes;
     }
