@@ -156,9 +156,8 @@ std::string lpvIgnoredLights(const std::vector<LightSettings>& lights);
 // Kept at 32^3: Sponza (0.761; 0.722 on 24^3, 0.584 on 16^3), basic (0.951), an open street
 // (0.872), a 20 m corridor (0.780; 0.690 on 24^3), a colonnade (0.799). The propagation's work
 // falls with the cells: 24^3 is 0.42 and 16^3 0.125 of 32^3's cell-steps.
-constexpr int kLPVFitMinCells = 16;
-constexpr float kLPVFitCellsPerGap = 6.0f;
-constexpr int kLPVFitStep = 8;
+// The fit's constants, kLPVFitMinCells, kLPVFitCellsPerGap and kLPVFitStep, are in
+// lpv_settings.h beside fitGrid, whose description states them.
 
 // Whether the settings let the grid be fitted: fitGrid, one cascade, no set extent.
 bool lpvFitsGrid(const LPVSettings& s);

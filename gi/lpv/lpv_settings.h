@@ -5,6 +5,12 @@
 
 namespace gi {
 
+// The fitted grid's rule (LPVSettings::fitGrid; lpv.h, "Fitted grid"), stated in fitGrid's
+// description below: change them together.
+constexpr int kLPVFitMinCells = 16;
+constexpr float kLPVFitCellsPerGap = 6.0f;
+constexpr int kLPVFitStep = 8;
+
 struct LPVSettings {
     static constexpr std::string_view kSection = "lpv";
     // The pass these settings drive, registered by the section list (gi/preset/settings.h).
