@@ -526,12 +526,15 @@ TEST_F(VCTGL, ConesThatEndUnoccludedSeeTheSky) {
 }
 
 // The two-room scene (issue 13 item 6): the closed room's indirect light over the lit room's.
-// With the defaults (isotropic content, the same in every direction) it is 35 %: the shared wall
+// With the defaults (isotropic content, the same in every direction) it is 60 %: the shared wall
 // lies on a voxel boundary and is voxelized into column 32, on the dark side, which then shows
-// its lit face to the dark room (68 % of that leak, measured by zeroing the radiance, not the
-// opacity, of voxel columns; with columns 31-32 zeroed 6 % remained, sent through the coarse mips
-// whose texels straddle the wall). Face sides (with bounceTail, as gi/vct/vct_settings.h
-// recommends them) keep it under issue 13's 5 % here, but not at every alignment of the wall
+// its lit face to the dark room (68 % of the leak when it was 35 %, measured by zeroing the
+// radiance, not the opacity, of voxel columns; with columns 31-32 zeroed 6 % remained, sent
+// through the coarse mips whose texels straddle the wall). It was 35 % while injection tested
+// shadows from the voxel centre: half a voxel towards the lit room put that test point on the
+// wall itself, which left column 32 partly in shadow; from the surface (inject.comp) the test
+// point lies in the lit room. Face sides (with bounceTail and two bounces, the tail standing for
+// the third and later) keep it under issue 13's 5 % here, but not at every alignment of the wall
 // (the next test). SH voxels, which radiate each side as a hemisphere, put less than half as
 // much light in the dark room, but their lit room is darker still. GI_TEST_IMAGES
 // (test_util.h) writes the pictures.
@@ -560,11 +563,13 @@ TEST_F(VCTGL, TwoRoomLeak) {
     double darkDefaults = dark;
     fs.vct.faceSides = true;
     fs.vct.bounceTail = true;
+    fs.vct.bounceCount = 2;  // the tail stands for the third bounce and those after it
     double sides = leak("face sides and bounce tail");
     EXPECT_LT(sides, 0.05) << "issue 13's leak bound, with face sides";
     EXPECT_LT(sides, 0.25 * defaults);
     fs.vct.faceSides = false;
     fs.vct.bounceTail = false;
+    fs.vct.bounceCount = VCTSettings{}.bounceCount;
     fs.vct.sh = true;
     leak("SH voxels");
     EXPECT_LT(dark, 0.5 * darkDefaults) << "SH voxels should put less than half the light of isotropic content in the dark room";
@@ -573,8 +578,9 @@ TEST_F(VCTGL, TwoRoomLeak) {
 // The same at every alignment of the shared wall in the grid: the scene moved by 0, 0.25, 0.5
 // and 0.75 of a voxel along x under a grid that stays put (two tiny black quads two voxels
 // outside the rooms fix the bounds), as DiffusionGL.TheClosedRoomStaysDarkWhereverTheWallFalls
-// does. Face sides leak 6.3, 25.5, 24.2 and 21.3 %, the defaults 38.8, 60.7, 57.3 and 53.1 %
-// (issue 13's 5 % is not met at any of them). Away from a voxel boundary the wall shares its
+// does. Face sides leak 7.6, 26.0, 24.2 and 21.4 %, the defaults 68.3, 65.0, 61.4 and 57.5 %
+// (issue 13's 5 % is not met at any of them; before injection moved to the surfaces and the
+// defaults to three bounces: 6.3, 25.5, 24.2 and 21.3 %, and 38.8, 60.7, 57.3 and 53.1 %). Away from a voxel boundary the wall shares its
 // voxel column with pieces of the floor, ceiling and side walls from both rooms, whose mean light
 // that column then shows to both, and a one-voxel wall lets part of a cone through between its
 // samples. Thicker walls were tried: kVCTSideMargin 0.25 leaked 6.6, 14.7, 23.5 and 18.0 % but

@@ -47,6 +47,7 @@ void Diffusion::allocate(const FrameSettings& fs) {
     mResolution = res;
     mAlbedo = gl::Texture::create3D(GL_R32UI, res, res, res);
     mNormal = gl::Texture::create3D(GL_R32UI, res, res, res);
+    mPosition = gl::Texture::create3D(GL_R32UI, res, res, res);
     mExitFront = gl::Texture::create3D(SurfaceVoxelizer::kExitFormat, res, res, res);
     mExitBack = gl::Texture::create3D(SurfaceVoxelizer::kExitFormat, res, res, res);
     mView = gl::Texture::create3D(GL_RGBA16F, res, res, res);
@@ -58,7 +59,7 @@ void Diffusion::allocate(const FrameSettings& fs) {
     mShaded = gl::createBuffer(cells * 3 * 16, nullptr, 0);
     mOutgoing = gl::createBuffer(cells * 6 * 16, nullptr, 0);
     ensureOrderBuffers(res);
-    mVoxelBytes = mAlbedo.bytes() + mNormal.bytes() + mExitFront.bytes() + mExitBack.bytes() + mView.bytes() + mViewInFlight.bytes() +
+    mVoxelBytes = mAlbedo.bytes() + mNormal.bytes() + mPosition.bytes() + mExitFront.bytes() + mExitBack.bytes() + mView.bytes() + mViewInFlight.bytes() +
                   mViewBounces.bytes();
     mBufferBytes = cells * kBufferBytesPerCell;
     mVoxelized = false;
@@ -108,10 +109,11 @@ void Diffusion::indirect(FrameContext& ctx) {
         grid.resolution = res;
         grid.gridMin = glm::vec4(box.min, 0.0f);
         grid.cellSize = box.cellSize;
+        grid.wrapOffset.w = 1;  // inject at the surfaces' positions in their voxels (vct_shared.h)
         bool newScene = ctx.scene.id() != mSceneId;
         const DiffusionVoxelization mode = fs.diffusion.voxelization;
         if (!mVoxelized || newScene || box.min != mBox.min || box.cellSize != mBox.cellSize || mode != mVoxelizedWith) {
-            mSurfaces.voxelize(ctx, grid, mAlbedo.id(), mNormal.id(), glm::ivec3(0), glm::ivec3(res),
+            mSurfaces.voxelize(ctx, grid, mAlbedo.id(), mNormal.id(), mPosition.id(), glm::ivec3(0), glm::ivec3(res),
                                mode == DiffusionVoxelization::Slicing);
             mVoxelizedWith = mode;
             mBox = box;
@@ -164,7 +166,7 @@ void Diffusion::smooth(const shared::DiffusionParams& p) {
 
 void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p) {
     {
-        mSurfaces.inject(ctx, grid, mAlbedo.id(), mNormal.id(), mExitFront.id(), mExitBack.id());
+        mSurfaces.inject(ctx, grid, mAlbedo.id(), mNormal.id(), mPosition.id(), mExitFront.id(), mExitBack.id());
         mInitProg.use();
         mBlock.set(p);
         glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
@@ -271,6 +273,7 @@ std::vector<VolumeMemory> Diffusion::volumeMemory() const {
     size_t cells = cellsOf(mResolution);
     return {{"albedo", r + "R32UI (RGBA8 + count)", mAlbedo.bytes()},
             {"normal", r + "R32UI (RGBA8 + count)", mNormal.bytes()},
+            {"position", r + "R32UI (RGBA8 + count)", mPosition.bytes()},
             {"exitRadiance", r + "R11F_G11F_B10F x 2 (front, back)", mExitFront.bytes() + mExitBack.bytes()},
             {"light", r + "3 x vec4 SH x 2 (ping-pong)", 2 * cells * 3 * 16},
             {"outgoing", r + "6 x vec4 (flux per face)", cells * 6 * 16},

@@ -112,7 +112,7 @@ private:
     SurfaceVoxelizer mSurfaces;
     gl::Program mInitProg, mEmitProg, mGatherProg, mShadeProg, mResolveProg, mSmoothProg;
     gl::UniformBlock<shared::DiffusionParams> mBlock;
-    gl::Texture mAlbedo, mNormal, mExitFront, mExitBack;
+    gl::Texture mAlbedo, mNormal, mPosition, mExitFront, mExitBack;
     gl::Texture mView;  // the accumulation, RGBA16F (diffusion.accumulated)
     gl::Texture mViewInFlight, mViewBounces;  // diffusion.inFlight, diffusion.bounces
     gl::Buffer mLight[2], mOutgoing, mAccum;

@@ -26,7 +26,7 @@ SurfaceVoxelizer::SurfaceVoxelizer()
 }
 
 void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                                glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing, GLuint sides) {
+                                GLuint position, glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing, GLuint sides) {
     const int res = grid.resolution;
     vct::VCTParams p = grid;
     p.clipMin = glm::ivec4(clipMin, 0);
@@ -37,6 +37,7 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     mBlock.set(p);
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImagePosition, position, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     gl::dispatch3D(res);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
@@ -53,6 +54,7 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     glDisable(GL_BLEND);
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindImageTexture(vct::kVCTImagePosition, position, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     mMaterialBinding.begin(mRepeat.id());
     for (int axis = slicing ? 1 : 0; axis <= (slicing ? 3 : 0); ++axis) {
         p.sliceAxis = axis;
@@ -70,11 +72,12 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
 }
 
 void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                              GLuint exitFront, GLuint exitBack, GLuint sides, GLuint sidesRadiance) {
+                              GLuint position, GLuint exitFront, GLuint exitBack, GLuint sides, GLuint sidesRadiance) {
     const auto& lights = ctx.settings.lights;
     mInjectProg.use();
     glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImagePosition, position, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageExitFront, exitFront, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
     glBindImageTexture(vct::kVCTImageExitBack, exitBack, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
     if (sides) {

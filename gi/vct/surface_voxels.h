@@ -30,21 +30,23 @@ class SurfaceVoxelizer {
 public:
     // The exit radiance's format: positive HDR colour, no alpha, half RGBA16F's size.
     static constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;
-    static constexpr size_t kBytesPerVoxel = 2 * 4 + 2 * 4;  // albedo, normal (r32ui); exit front, back
+    static constexpr size_t kBytesPerVoxel = 3 * 4 + 2 * 4;  // albedo, normal, position (r32ui); exit front, back
 
     SurfaceVoxelizer();
 
     // Clears [clipMin, clipMax) of the grid (in its toroidal place), then voxelizes the scene
-    // into albedo and normal (GL_R32UI volumes of grid.resolution^3) there: one conservative draw,
-    // or with `slicing` seed 001's three draws, one along each axis, into the same volumes.
-    void voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, glm::ivec3 clipMin,
-                  glm::ivec3 clipMax, bool slicing = false, GLuint sides = 0);
+    // into albedo, normal and position (GL_R32UI volumes of grid.resolution^3; position: where
+    // the surface lies in its voxel) there: one conservative draw, or with `slicing` seed 001's
+    // three draws, one along each axis, into the same volumes.
+    void voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint position,
+                  glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing = false, GLuint sides = 0);
     // The direct light each side of every occupied voxel leaves, into exitFront and exitBack
-    // (kExitFormat volumes of the grid's size); lights in batches of kVCTMaxLights.
+    // (kExitFormat volumes of the grid's size), evaluated where its surface lies (position);
+    // lights in batches of kVCTMaxLights.
     // With `sides` (an r32ui volume six grids wide along x, voxelize() filled it) also the
     // radiance of each side into sidesRadiance (RGBA16F, as wide), as inject.comp describes.
-    void inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint exitFront,
-                GLuint exitBack, GLuint sides = 0, GLuint sidesRadiance = 0);
+    void inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint position,
+                GLuint exitFront, GLuint exitBack, GLuint sides = 0, GLuint sidesRadiance = 0);
     bool reloadShaders(std::string& log);
     // Voxelizations run since creation (tests: a static grid is not voxelized twice).
     int voxelizationCount() const { return mVoxelizationCount; }

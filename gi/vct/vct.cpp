@@ -136,10 +136,11 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
         Level l;
         l.albedo = gl::Texture::create3D(GL_R32UI, r, r, r);
         l.normal = gl::Texture::create3D(GL_R32UI, r, r, r);
+        l.position = gl::Texture::create3D(GL_R32UI, r, r, r);
         l.exitFront = gl::Texture::create3D(kExitFormat, r, r, r);
         l.exitBack = gl::Texture::create3D(kExitFormat, r, r, r);
         l.radiance = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
-        mVoxelBytes += l.albedo.bytes() * 2 + l.exitFront.bytes() * 2;
+        mVoxelBytes += l.albedo.bytes() * 3 + l.exitFront.bytes() * 2;
         if (mFaceSides) {
             l.sides = gl::Texture::create3D(GL_R32UI, 6 * r, r, r);
             l.sidesRadiance = gl::Texture::create3D(GL_RGBA16F, 6 * r, r, r);
@@ -200,7 +201,10 @@ vct::VCTParams VCT::gridParams(const Level& level) const {
     p.resolution = mResolution;
     p.gridMin = glm::vec4(level.box.min, 0.0f);
     p.cellSize = level.box.cellSize;
-    p.wrapOffset = glm::ivec4(mMode == VCTMode::Clipmap ? wrapOf(level.box.origin, mResolution) : glm::ivec3(0), 0);
+    // The finest level injects and bounces at its surfaces' positions, the coarser ones at their
+    // voxels' centres (wrapOffset.w, vct_shared.h).
+    p.wrapOffset = glm::ivec4(mMode == VCTMode::Clipmap ? wrapOf(level.box.origin, mResolution) : glm::ivec3(0),
+                              &level == &mLevels.front() ? 1 : 0);
     return p;
 }
 
@@ -224,7 +228,7 @@ bool VCT::updateGrids(const FrameContext& ctx) {
         l.box = nb;
         l.voxelized = true;
         if (!partial) {
-            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), glm::ivec3(0), glm::ivec3(r), false, l.sides.id());
+            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.position.id(), glm::ivec3(0), glm::ivec3(r), false, l.sides.id());
             mVoxelizedVoxels[k] = voxels(r);
             continue;
         }
@@ -234,7 +238,7 @@ bool VCT::updateGrids(const FrameContext& ctx) {
             glm::ivec3 lo(0), hi(r);
             if (delta[axis] > 0) lo[axis] = r - delta[axis];
             else hi[axis] = -delta[axis];
-            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), lo, hi, false, l.sides.id());
+            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.position.id(), lo, hi, false, l.sides.id());
             glm::ivec3 size = hi - lo;
             mVoxelizedVoxels[k] += size_t(size.x) * size_t(size.y) * size_t(size.z);
         }
@@ -246,13 +250,14 @@ void VCT::inject(const FrameContext& ctx, bool relight) {
     auto pass = ctx.timer.scope("vct.inject");
     if (!relight) return;
     for (Level& l : mLevels)
-        mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.exitFront.id(), l.exitBack.id(), l.sides.id(),
+        mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.position.id(), l.exitFront.id(), l.exitBack.id(), l.sides.id(),
                          l.sidesRadiance.id());
 }
 
 void VCT::bindVoxelImages(const Level& l) const {
     glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageNormal, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImagePosition, l.position.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(vct::kVCTImageExitFront, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
     glBindImageTexture(vct::kVCTImageExitBack, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
 }
@@ -541,6 +546,7 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
         std::string s = mLevels.size() > 1 ? "[" + std::to_string(k) + "]" : "";
         v.push_back({"albedo" + s, r + "R32UI (RGBA8 + count)", l.albedo.bytes()});
         v.push_back({"normal" + s, r + "R32UI (RGBA8 + count)", l.normal.bytes()});
+        v.push_back({"position" + s, r + "R32UI (RGBA8 + count)", l.position.bytes()});
         v.push_back({"exitRadiance" + s, r + "R11F_G11F_B10F x 2 (front, back)", l.exitFront.bytes() + l.exitBack.bytes()});
         if (l.bouncedFront.bytes())
             v.push_back({"bouncedRadiance" + s, r + "R11F_G11F_B10F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});

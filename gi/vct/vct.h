@@ -6,13 +6,16 @@
 //      slab). The geometry stage projects each triangle along its dominant axis onto a viewport
 //      of one pixel per voxel column and grows it for conservative rasterization (edges moved
 //      out by half a pixel's extent, an AABB clip in the fragment stage); the fragment stage
-//      writes diffuse albedo and normal into r32ui volumes by an atomic running average of RGBA8
-//      (rgb the mean, a the count, as seeds 000 and 003). Opacity is 1 where anything
+//      writes diffuse albedo, normal and the surface's position within the voxel into r32ui
+//      volumes by an atomic running average of RGBA8 (rgb the mean, a the count, as seeds 000
+//      and 003). Opacity is 1 where anything
 //      was written. The geometry is static, so a grid is voxelized again only when the scene or
 //      the grid's placement changes.
 //   2. Injection [vct.inject]: per voxel, the direct light of every light on each side of its
-//      mean normal with a test against the renderer's shadow map, turned into the radiance each
-//      side leaves (albedo * E / pi). resolve.comp writes the traced volume:
+//      mean normal, at its surface, with a test against the renderer's shadow map, turned into the
+//      radiance each side leaves (albedo * E / pi); the back counts as far as the voxel's
+//      fragments face back (backWeight in voxel_encoding.glsl: none for a solid's or a one-sided
+//      shell's surface, whose back a cone in front of it must not see). resolve.comp writes the traced volume:
 //      isotropic premultiplied RGBA16F (both sides summed, alpha = opacity) or, with `sh`, 2-band
 //      SH per colour with each side a hemisphere of radiance around its normal.
 //   3. Bounces [vct.bounce], bounceCount - 1 times: every occupied voxel (listed first by
@@ -164,7 +167,7 @@ public:
     bool reloadShaders(std::string& log) override;
 
     struct Level {
-        gl::Texture albedo, normal;             // r32ui running averages
+        gl::Texture albedo, normal, position;   // r32ui running averages (position: where the surface lies in its voxel)
         gl::Texture exitFront, exitBack;        // R11F_G11F_B10F radiance each side leaves
         gl::Texture bouncedFront, bouncedBack;  // direct + gathered light after a bounce (bounceCount > 1)
         gl::Buffer occupiedList, occupiedDispatch;  // compact.comp's voxel list and indirect dispatch

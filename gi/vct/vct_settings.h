@@ -48,13 +48,20 @@ struct VCTSettings {
     float nudge = 3.0f;               // start offset in voxel diagonals over n.w (seed 000 eq. 3.4)
     float stepMultiplier = 1.0f;      // step = multiplier * cone diameter; below 1 oversamples
     float maxDistance = 0.0f;         // cone length in world units; 0 = the grid's diagonal
-    // 1: direct light in the voxels; 2 or 3 re-inject traced indirect light. 2 by default: against
-    // the reference (8 bounces) one bounce left the light of a closed room far short (the nine
-    // Cornell box files' SSIM 0.52-0.81 at 1, 0.55-0.85 at 2; the default preset 0.749 -> 0.812,
-    // Sponza 0.793 -> 0.808), and 3 over-brightens Sponza and the lamp-lit box. A bounce costs one cone
-    // trace per lit voxel when the light changes (Sponza 64^3: about 0.7 s on llvmpipe), nothing
-    // in the editor's steady state.
-    int bounceCount = 2;
+    // 1: direct light in the voxels; 2 or 3 re-inject traced indirect light. Against the reference
+    // (8 bounces) one bounce left the light of a closed room far short (the nine Cornell box files'
+    // SSIM 0.52-0.81 at 1, 0.55-0.85 at 2; the default preset 0.749 -> 0.812, Sponza 0.793 ->
+    // 0.808). 3 by default since voxels stopped showing their back's light to their front
+    // (inject.comp, backWeight): 2 had been the default because 3 over-brightened Sponza and the
+    // lamp-lit box, but part of that light came from backs no cone could see (the lamp's own voxels
+    // lit from behind by the lamp; a sunlit roof's underside in a room below it). At 128x96 against
+    // the reference, two bounces before that change -> three after it: default 0.868 -> 0.877,
+    // vct_cornell_lamp 0.872 -> 0.913, CornellBox-Empty-White 0.763 -> 0.798, vct_sponza 0.820 ->
+    // 0.824, a room lit by the sun through a window 0.646 -> 0.662 (thick walls 0.361 -> 0.460),
+    // a corridor 0.459 -> 0.478, two rooms joined by a doorway 0.626 -> 0.608. A bounce costs one
+    // cone trace per lit voxel when the light changes, on the voxel's back only where it has one,
+    // and nothing in the editor's steady state.
+    int bounceCount = 3;
     // The last bounce also stands for the bounces after it (bounce.comp): its gathered light is
     // divided by 1 - albedo x the cones' opacity, the sum of the bounces a surface enclosed by
     // surfaces like itself would still receive. No effect with one bounce. Off by default: it
@@ -70,15 +77,28 @@ struct VCTSettings {
     // within 0.001, vct_sponza 0.809 -> 0.800 (Sponza is open and already 1.10x too bright), and
     // vct_cornell_original with two bounces and the tail 0.874 (0.876 with its three bounces).
     // With face sides it brings their bounces to the reference's brightness (vct_cornell 0.829 -> 0.855).
+    // Measured again once voxels stopped showing their back's light (two bounces and the tail
+    // against the three bounces of the defaults, 128x96): default 0.890 / 0.877,
+    // CornellBox-Empty-White 0.857 / 0.798, the corridor 0.501 / 0.478, but a room lit by the sun
+    // through a window 0.602 / 0.662 (1.54x the reference's brightness), vct_cornell_lamp 0.868 /
+    // 0.913, and the shift test +6.7 % / +4.2 %, so it stays off.
     bool bounceTail = false;
     bool anisotropic = true;          // six directional mip volumes instead of one (isotropic voxels only)
     bool sh = false;                  // store voxel radiance as 2-band SH per colour (direction-dependent)
     // Anisotropic voxels keep each face of a surface on its own side (gi/vct/vct.h, "Face
     // sides"): a thin wall no longer shows its lit face to the room behind it. Off by default:
-    // with bounceTail the two-room leak falls from 35 % to 4.9 % where the test scene's wall falls,
-    // and to 6-25 % at the alignments VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls tries (39-61 %
-    // without), but the Cornell presets and boxes lose 0.003-0.018 SSIM and Sponza 0.008, and a
-    // cone sample makes 7 texture calls instead of 3 (the trace 1.75x the time).
+    // with bounceTail (and two bounces) the two-room leak falls from 60 % to 4.8 % where the test
+    // scene's wall falls, and to 8-26 % at the alignments VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls
+    // tries (57-68 % without), but the Cornell presets and boxes lose 0.003-0.018 SSIM and Sponza
+    // 0.008, and a cone sample makes 7 texture calls instead of 3 (the trace 1.75x the time).
+    // Where it matters most: a room lit by the sun through a window, whose sunlit roof and outer
+    // walls the anisotropic mips show to the cones inside. A slab averages the layers that a cone
+    // marching along its axis passes edge-on, so a roof's sunlit top reaches a cone rising at 45
+    // degrees through the ceiling at any resolution: the one-bounce indirect light of such a room
+    // with 0.6 m walls is 9.5x the reference's at 64^3 and 10x at 128^3, 1.2x with face sides.
+    // With face sides and the tail it scores 0.821 against the defaults' 0.662 (0.796 against 0.460
+    // with the thick walls), but the two-room doorway scene 0.515 against 0.608 and the Cornell
+    // presets about 0.03 less.
     bool faceSides = false;
     bool specularCone = true;         // trace one cone along the reflection, aperture from roughness
     float specularApertureMin = 1.0f;   // specular cone aperture at roughness 0, degrees

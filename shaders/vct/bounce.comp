@@ -2,6 +2,10 @@
 // of its mean normal through the current radiance volumes (direct light plus the bounces so far)
 // and leaves its direct radiance plus albedo * E / pi (seed 000 re-injects the traced light; the
 // cones start one voxel diagonal out, more with a larger nudge, so a voxel does not light itself).
+// The cones start where the voxel's surface lies (the position volume), not at its centre, so the
+// gathered light does not depend on where the surface falls in its voxel; the back's light is
+// weighted by how much of the voxel faces back (backWeight), and a voxel with no back traces
+// nothing there.
 // With vct.bounceTail the last bounce also adds the bounces after it (hemisphere() below).
 // resolve.comp and the mip pass then rebuild the traced volumes.
 #include "vct/trace.glsl"
@@ -12,6 +16,7 @@ layout(std430, binding = kVCTBufferDispatch) readonly buffer Dispatch { uint gro
 layout(std430, binding = kVCTBufferVoxels) readonly buffer Voxels { uint voxels[]; };  // compact.comp's list
 layout(binding = kVCTImageAlbedo, r32ui) uniform readonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
+layout(binding = kVCTImagePosition, r32ui) uniform readonly uimage3D uPositionVox;
 layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform readonly image3D uDirectFront;  // inject.comp's result
 layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform readonly image3D uDirectBack;
 layout(binding = kVCTImageBouncedFront, r11f_g11f_b10f) uniform writeonly image3D uExitFront;  // what resolve.comp reads next
@@ -52,10 +57,11 @@ void main() {
     vec3 albedo = unpackVoxel(a).rgb;
     vec3 nn = voxelNormal(imageLoad(uNormalVox, t).r);
     vec3 n = length(nn) > 1e-3 ? normalize(nn) : vec3(0.0, 1.0, 0.0);
-    vec3 p = voxelCentre(v);
+    vec3 p = voxelSurface(v, imageLoad(uPositionVox, t).r);
     // E / pi on each side; the surface then leaves albedo * E / pi.
     float rho = dot(albedo, vec3(0.2126, 0.7152, 0.0722));  // Rec. 709 luminance
-    vec3 front = hemisphere(p, n, rho), back = hemisphere(p, -n, rho);
+    float wb = backWeight(imageLoad(uNormalVox, t).r);
+    vec3 front = hemisphere(p, n, rho), back = wb > kVCTBackMinWeight ? wb * hemisphere(p, -n, rho) : vec3(0.0);
     imageStore(uExitFront, t, imageLoad(uDirectFront, t) + vec4(albedo * front, 0.0));
     imageStore(uExitBack, t, imageLoad(uDirectBack, t) + vec4(albedo * back, 0.0));
 #if VCT_SIDES

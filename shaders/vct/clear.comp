@@ -7,6 +7,7 @@ layout(local_size_x = kGroup3DX, local_size_y = kGroup3DY, local_size_z = kGroup
 layout(binding = kVCTImageAlbedo, r32ui) uniform writeonly uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform writeonly uimage3D uNormalVox;
 layout(binding = kVCTImageSides, r32ui) uniform writeonly uimage3D uSidesVox;
+layout(binding = kVCTImagePosition, r32ui) uniform writeonly uimage3D uPositionVox;
 
 void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -14,6 +15,7 @@ void main() {
     ivec3 t = texelOf(v);
     imageStore(uAlbedoVox, t, uvec4(0u));
     imageStore(uNormalVox, t, uvec4(0u));
+    imageStore(uPositionVox, t, uvec4(0u));
     if (uVCT.sides != 0)
         for (int s = 0; s < 6; ++s) imageStore(uSidesVox, t + ivec3(s * uVCT.resolution, 0, 0), uvec4(0u));
 }

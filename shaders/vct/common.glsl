@@ -5,5 +5,6 @@
 
 bool insideGrid(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uVCT.resolution))); }
 ivec3 texelOf(ivec3 voxel) { return (voxel + uVCT.wrapOffset.xyz) % uVCT.resolution; }
-vec3 voxelCentre(ivec3 voxel) { return uVCT.gridMin.xyz + (vec3(voxel) + 0.5) * uVCT.cellSize; }
 #include "vct/voxel_encoding.glsl"
+// The mean position of the surface in voxel v (a position volume's texel, voxelize.frag).
+vec3 voxelSurface(ivec3 voxel, uint packedPosition) { return uVCT.gridMin.xyz + (vec3(voxel) + (uVCT.wrapOffset.w != 0 ? voxelSurfaceOffset(packedPosition) : vec3(0.5))) * uVCT.cellSize; }

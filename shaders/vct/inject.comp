@@ -1,15 +1,22 @@
 // Light injection, per voxel: the direct irradiance E of a batch of up to kVCTMaxLights lights of
 // the frame's light buffer (common/light.h) on each side of the voxel's surface (front: along its
-// mean normal, back: against it), tested against the renderer's shadow maps at the voxel centre
-// moved half a voxel off the surface on the lit side, stored as the radiance each side leaves,
-// L = albedo * E / pi (Lambertian). Later batches (more lights) and bounces add to it. Emissive
+// mean normal, back: against it) where the surface lies in the voxel (the position volume,
+// voxelize.frag), tested against the renderer's shadow maps at that point moved half a voxel off
+// the surface on the lit side, stored as the radiance each side leaves, L = albedo * E / pi
+// (Lambertian), the back's times the voxel's backWeight (voxel_encoding.glsl). Evaluated at the
+// voxel centre, E and the shadow test moved with the grid's alignment (a point light 0.3 m from a
+// wall gives +-17 % across a 5 cm voxel): the shift test's worst case with three bounces fell
+// from +5.2 % to +4.2 % at the surface. Later batches (more lights) and bounces add to it. Emissive
 // surfaces are area lights here like any other light (their exact irradiance on each voxel below);
 // their own emission is not added to their voxels, since the raster's light pass already shades
 // their direct light and cones that gathered it would count it twice.
 // The test point is not also moved towards the light (as it was before issue 13's leak work): in
 // the two-room scene that carried the dark room's floor and wall voxels next to the shared wall
 // through it into the lit room's light, and the closed room took 46 % of the lit room's indirect
-// light instead of 22 %; the shipped presets moved by at most 0.009 SSIM either way.
+// light instead of 22 %; the shipped presets moved by at most 0.009 SSIM either way. (Testing at
+// the surface rather than the voxel centre lights the dark room's voxel that holds the shared
+// wall, which lies on its boundary there, by the wall's lit face: the defaults' two-room leak
+// rose from 35 % to 60 %, 57-68 % against 39-61 % at the other alignments; vct_test.cpp.)
 // resolve.comp turns the two sides into the traced radiance volumes.
 #include "vct/common.glsl"
 #include "common/light.h"
@@ -21,6 +28,7 @@ layout(binding = kVCTImageNormal, r32ui) uniform readonly uimage3D uNormalVox;
 layout(binding = kVCTImageExitFront, r11f_g11f_b10f) uniform image3D uExitFront;
 layout(binding = kVCTImageExitBack, r11f_g11f_b10f) uniform image3D uExitBack;
 layout(binding = kVCTImageSides, r32ui) uniform readonly uimage3D uSidesVox;
+layout(binding = kVCTImagePosition, r32ui) uniform readonly uimage3D uPositionVox;
 layout(binding = kVCTImageSidesRadiance, rgba16f) uniform image3D uSidesRadiance;
 layout(binding = kVCTUnitShadow2D) uniform sampler2DShadow uShadow2D[kVCTMaxLights];
 layout(binding = kVCTUnitShadowCube) uniform samplerCubeShadow uShadowCube[kVCTMaxLights];
@@ -72,7 +80,7 @@ vec3 sideIrradiance(vec3 p, vec3 n) {
 void injectSides(ivec3 v, ivec3 t, uint packedAlbedo) {
     vec4 albedo = unpackVoxel(packedAlbedo);
     float total = max(round(albedo.a * kVCTMaxCount), 1.0);
-    vec3 p = voxelCentre(v);
+    vec3 p = voxelSurface(v, imageLoad(uPositionVox, t).r);
     for (int s = 0; s < 6; ++s) {
         ivec3 ts = t + ivec3(s * uVCT.resolution, 0, 0);
         vec4 result = vec4(0.0);
@@ -103,7 +111,7 @@ void main() {
         vec3 n = voxelNormal(packedNormal);
         float len = length(n);
         n = len > 1e-3 ? n / len : vec3(0.0, 1.0, 0.0);
-        vec3 p = voxelCentre(v);
+        vec3 p = voxelSurface(v, imageLoad(uPositionVox, t).r);
         for (int i = 0; i < uVCT.lightCount; ++i) {
             GPULight l = uLights[uVCT.lightFirst + i];
             vec3 L;
@@ -136,7 +144,7 @@ void main() {
     }
     vec3 albedo = unpackVoxel(packedAlbedo).rgb / kPi;
     front *= albedo;
-    back *= albedo;
+    back *= albedo * backWeight(packedNormal);
     if (uVCT.accumulate != 0) {
         front += imageLoad(uExitFront, t).rgb;
         back += imageLoad(uExitBack, t).rgb;

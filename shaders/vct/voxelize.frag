@@ -5,7 +5,9 @@
 // the pixel's centre, as a slab-clipped scan conversion does; the other axes fill the gaps. Values go in with a running average by atomic
 // compare-and-swap on RGBA8 packed in r32ui (seed 000 and 003): rgb the mean, a the count.
 // Albedo is the diffuse albedo (base colour times 1 - metallic); normals are stored as
-// n * 0.5 + 0.5. Emission is not stored: emissive surfaces reach VCT as area lights (inject.comp).
+// n * 0.5 + 0.5, and the position volume holds where the surface lies in the voxel (0 to 1 per
+// axis: the pixel's centre across the projection, the triangle's depth along it), so injection
+// and bounces work at the surface, not at the voxel centre. Emission is not stored: emissive surfaces reach VCT as area lights (inject.comp).
 #include "common/shared.h"
 #include "common/material.glsl"
 #include "vct/vct_shared.h"
@@ -13,6 +15,7 @@
 layout(binding = kVCTImageAlbedo, r32ui) uniform coherent volatile uimage3D uAlbedoVox;
 layout(binding = kVCTImageNormal, r32ui) uniform coherent volatile uimage3D uNormalVox;
 layout(binding = kVCTImageSides, r32ui) uniform coherent volatile uimage3D uSidesVox;
+layout(binding = kVCTImagePosition, r32ui) uniform coherent volatile uimage3D uPositionVox;
 
 in vec3 gGrid;
 in vec3 gNormal;
@@ -65,9 +68,11 @@ void main() {
         ivec3 c = ivec3(unswizzle(vec3(floor(gl_FragCoord.xy), float(z)), gAxis));
         vec3 offset = vec3(c) + 0.5 - g;  // the voxel centre from the surface
         if (any(lessThan(c, uVCT.clipMin.xyz)) || any(greaterThanEqual(c, uVCT.clipMax.xyz))) continue;
+        vec3 inside = clamp(0.5 - offset, 0.0, 1.0);  // where the surface lies in this voxel
         c = (c + uVCT.wrapOffset.xyz) % uVCT.resolution;
         GI_RUNNING_AVERAGE(uAlbedoVox, c, albedo)
         GI_RUNNING_AVERAGE(uNormalVox, c, n)
+        GI_RUNNING_AVERAGE(uPositionVox, c, inside)
         if (uVCT.sides != 0)
             for (int a = 0; a < 3; ++a)
                 if (abs(normal[a]) > kVCTSideMinCosine) {
