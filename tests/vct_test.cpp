@@ -525,6 +525,36 @@ TEST_F(VCTGL, ConesThatEndUnoccludedSeeTheSky) {
     EXPECT_LT(inside, 0.05 * none) << "no sky inside a closed box";
 }
 
+// A closed room of one-sided walls under the sun: the sun reaches only the back of the ceiling,
+// outside, so the path tracer's room is dark. A voxel's back counts only as far as its fragments
+// face back (inject.comp and bounce.comp, backWeight): a one-sided ceiling's voxels have none, so
+// the sunlight on their backs stays out of the room, where their isotropic radiance used to carry
+// it (a room lit through a window took 3x the reference's brightness from its sunlit roof). The
+// scale: the same room lit from inside by a point light.
+TEST_F(VCTGL, ASunOnTheRoofDoesNotLightTheRoomBelow) {
+    Scene room = test::closedRoom();
+    Preset p;
+    p.header.technique.name = "vct";
+    FrameSettings fs = frameSettings(p, room, 64, 48);
+    fs.camera.eye = {1.5f, 1.5f, 1.5f};
+    fs.camera.target = {-1.0f, 1.0f, -1.0f};
+    fs.camera.fovY = 70.0f;
+    LightSettings sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    sun.intensity = 5.0f;
+    fs.lights = {sun};
+    Renderer r;
+    r.setScene(room);
+    double outside = test::meanIndirect(r, fs);
+    fs.lights = {test::pointLight({0.0f, 1.5f, 0.0f}, 20.0f)};
+    double inside = test::meanIndirect(r, fs);
+    std::printf("indirect light in the room: the sun on the roof %.5f, a point light inside %.5f (%.2f %%)\n", outside, inside,
+                100.0 * outside / inside);
+    EXPECT_GT(inside, 0.0);
+    EXPECT_LT(outside, 0.01 * inside) << "the sunlit backs of the ceiling's voxels light the room";
+}
+
 // The two-room scene (issue 13 item 6): the closed room's indirect light over the lit room's.
 // With the defaults (isotropic content, the same in every direction) it is 60 %: the shared wall
 // lies on a voxel boundary and is voxelized into column 32, on the dark side, which then shows
