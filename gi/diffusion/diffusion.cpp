@@ -35,7 +35,7 @@ Diffusion::Diffusion()
 }
 
 size_t Diffusion::estimateBytes(const FrameSettings& fs) {
-    return cellsOf(fs.diffusion.gridResolution) * (SurfaceVoxelizer::kBytesPerVoxel + kViewBytesPerCell + kBufferBytesPerCell);
+    return cellsOf(fs.diffusion.gridResolution) * (SurfaceVolumes::kBytesPerVoxel + kViewBytesPerCell + kBufferBytesPerCell);
 }
 
 void Diffusion::allocate(const FrameSettings& fs) {
@@ -45,11 +45,7 @@ void Diffusion::allocate(const FrameSettings& fs) {
     // emit.comp and gather.comp view the outgoing flux as a buffer texture of 6 texels per cell.
     gl::requireBufferTexels(size_t(res) * res * res * 6, "diffusion.gridResolution");
     mResolution = res;
-    mAlbedo = gl::Texture::create3D(GL_R32UI, res, res, res);
-    mNormal = gl::Texture::create3D(GL_R32UI, res, res, res);
-    mPosition = gl::Texture::create3D(GL_R32UI, res, res, res);
-    mExitFront = gl::Texture::create3D(SurfaceVoxelizer::kExitFormat, res, res, res);
-    mExitBack = gl::Texture::create3D(SurfaceVoxelizer::kExitFormat, res, res, res);
+    mSurface = SurfaceVolumes::create(res);
     mView = gl::Texture::create3D(GL_RGBA16F, res, res, res);
     mViewInFlight = gl::Texture::create3D(GL_RGBA16F, res, res, res);
     mViewBounces = gl::Texture::create3D(GL_RGBA16F, res, res, res);
@@ -59,7 +55,7 @@ void Diffusion::allocate(const FrameSettings& fs) {
     mShaded = gl::createBuffer(cells * 3 * 16, nullptr, 0);
     mOutgoing = gl::createBuffer(cells * 6 * 16, nullptr, 0);
     ensureOrderBuffers(res);
-    mVoxelBytes = mAlbedo.bytes() + mNormal.bytes() + mPosition.bytes() + mExitFront.bytes() + mExitBack.bytes() + mView.bytes() + mViewInFlight.bytes() +
+    mVoxelBytes = mSurface.bytes() + mView.bytes() + mViewInFlight.bytes() +
                   mViewBounces.bytes();
     mBufferBytes = cells * kBufferBytesPerCell;
     mVoxelized = false;
@@ -113,7 +109,7 @@ void Diffusion::indirect(FrameContext& ctx) {
         bool newScene = ctx.scene.id() != mSceneId;
         const DiffusionVoxelization mode = fs.diffusion.voxelization;
         if (!mVoxelized || newScene || box.min != mBox.min || box.cellSize != mBox.cellSize || mode != mVoxelizedWith) {
-            mSurfaces.voxelize(ctx, grid, mAlbedo.id(), mNormal.id(), mPosition.id(), glm::ivec3(0), glm::ivec3(res),
+            mSurfaces.voxelize(ctx, grid, mSurface, glm::ivec3(0), glm::ivec3(res),
                                mode == DiffusionVoxelization::Slicing);
             mVoxelizedWith = mode;
             mBox = box;
@@ -141,7 +137,7 @@ void Diffusion::indirect(FrameContext& ctx) {
         if (restart) mStepsDone = 0;
         int steps = std::min(s.iterationsPerFrame > 0 ? s.iterationsPerFrame : s.iterations, s.iterations - mStepsDone);
         for (int k = 0; k < steps; ++k, ++mStepsDone)
-            propagateStep(mAlbedo.id(), mNormal.id(), mLight[mStepsDone % 2].id(), mLight[(mStepsDone + 1) % 2].id(), mOutgoing.id(),
+            propagateStep(mSurface.albedo.id(), mSurface.normal.id(), mLight[mStepsDone % 2].id(), mLight[(mStepsDone + 1) % 2].id(), mOutgoing.id(),
                           mAccum.id(), res, s.bounceAlbedo);
         // The accumulation changed (a restart clears it, steps add to it): smooth it again.
         if (s.smoothing && (restart || steps > 0)) smooth(p);
@@ -153,8 +149,8 @@ void Diffusion::indirect(FrameContext& ctx) {
 void Diffusion::smooth(const shared::DiffusionParams& p) {
     mSmoothProg.use();
     mBlock.set(p);
-    glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(shared::kDiffusionImageAlbedo, mSurface.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(shared::kDiffusionImageNormal, mSurface.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glTextureBuffer(mAccumView.id(), GL_RGBA32F, mAccum.id());
     glTextureBuffer(mDestinationView.id(), GL_RGBA32F, mShaded.id());
     glBindTextureUnit(shared::kDiffusionUnitSmoothSource, mAccumView.id());
@@ -166,13 +162,13 @@ void Diffusion::smooth(const shared::DiffusionParams& p) {
 
 void Diffusion::injectLight(const FrameContext& ctx, const vct::VCTParams& grid, const shared::DiffusionParams& p) {
     {
-        mSurfaces.inject(ctx, grid, mAlbedo.id(), mNormal.id(), mPosition.id(), mExitFront.id(), mExitBack.id());
+        mSurfaces.inject(ctx, grid, mSurface);
         mInitProg.use();
         mBlock.set(p);
-        glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(shared::kDiffusionImageExitFront, mExitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, SurfaceVoxelizer::kExitFormat);
-        glBindImageTexture(shared::kDiffusionImageExitBack, mExitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, SurfaceVoxelizer::kExitFormat);
+        glBindImageTexture(shared::kDiffusionImageAlbedo, mSurface.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(shared::kDiffusionImageNormal, mSurface.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(shared::kDiffusionImageExitFront, mSurface.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, SurfaceVolumes::kExitFormat);
+        glBindImageTexture(shared::kDiffusionImageExitBack, mSurface.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, SurfaceVolumes::kExitFormat);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferDestination, mLight[0].id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferAccum, mAccum.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, shared::kDiffusionBufferOrderDestination, mOrder[0].id());
@@ -193,8 +189,8 @@ void Diffusion::shade(FrameContext& ctx, shared::DiffusionParams p) {
         mBlock.set(p);
         glBindTextureUnit(shared::kUnitNormal, ctx.normal);
         glBindTextureUnit(shared::kUnitDepth, ctx.depth);
-        glBindImageTexture(shared::kDiffusionImageAlbedo, mAlbedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-        glBindImageTexture(shared::kDiffusionImageNormal, mNormal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(shared::kDiffusionImageAlbedo, mSurface.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(shared::kDiffusionImageNormal, mSurface.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(shared::kDiffusionImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glTextureBuffer(mAccumView.id(), GL_RGBA32F, ctx.settings.diffusion.smoothing ? mShaded.id() : mAccum.id());
         glBindTextureUnit(shared::kDiffusionUnitShadeAccum, mAccumView.id());
@@ -253,8 +249,8 @@ void Diffusion::propagateStep(GLuint albedo, GLuint normal, GLuint source, GLuin
 
 std::vector<DebugView> Diffusion::debugViews() const {
     int r = mResolution;
-    return {{"diffusion.occupancy", mAlbedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1},
-            {"diffusion.normal", mNormal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1},
+    return {{"diffusion.occupancy", mSurface.albedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1},
+            {"diffusion.normal", mSurface.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1},
             {"diffusion.accumulated", mView.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1},
             {"diffusion.inFlight", mViewInFlight.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1},
             {"diffusion.bounces", mViewBounces.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1}};
@@ -271,16 +267,16 @@ size_t Diffusion::memoryBytes() const { return mVoxelBytes + mBufferBytes; }
 std::vector<VolumeMemory> Diffusion::volumeMemory() const {
     std::string r = std::to_string(mResolution) + "^3 ";
     size_t cells = cellsOf(mResolution);
-    return {{"albedo", r + "R32UI (RGBA8 + count)", mAlbedo.bytes()},
-            {"normal", r + "R32UI (RGBA8 + count)", mNormal.bytes()},
-            {"position", r + "R32UI (RGBA8 + count)", mPosition.bytes()},
-            {"exitRadiance", r + "R11F_G11F_B10F x 2 (front, back)", mExitFront.bytes() + mExitBack.bytes()},
-            {"light", r + "3 x vec4 SH x 2 (ping-pong)", 2 * cells * 3 * 16},
-            {"outgoing", r + "6 x vec4 (flux per face)", cells * 6 * 16},
-            {"accumulated", r + "3 x vec4 SH", cells * 3 * 16},
-            {"shaded", r + "3 x vec4 SH (the accumulation smoothed over each surface)", cells * 3 * 16},
-            {"bounceOrder", r + "float x 3 (in flight x 2, accumulated)", cells * 3 * 4},
-            {"views", r + "RGBA16F x 3 (accumulated, in flight, bounces)", mView.bytes() + mViewInFlight.bytes() + mViewBounces.bytes()}};
+    std::vector<VolumeMemory> v;
+    mSurface.describe(v, mResolution);
+    v.insert(v.end(),
+             {{"light", r + "3 x vec4 SH x 2 (ping-pong)", 2 * cells * 3 * 16},
+              {"outgoing", r + "6 x vec4 (flux per face)", cells * 6 * 16},
+              {"accumulated", r + "3 x vec4 SH", cells * 3 * 16},
+              {"shaded", r + "3 x vec4 SH (the accumulation smoothed over each surface)", cells * 3 * 16},
+              {"bounceOrder", r + "float x 3 (in flight x 2, accumulated)", cells * 3 * 4},
+              {"views", r + "RGBA16F x 3 (accumulated, in flight, bounces)", mView.bytes() + mViewInFlight.bytes() + mViewBounces.bytes()}});
+    return v;
 }
 
 std::vector<std::string> Diffusion::passNames(const FrameSettings&) const {

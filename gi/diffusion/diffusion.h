@@ -105,14 +105,14 @@ public:
     // The flux-weighted bounce order summed over the accumulation, one float per cell (orders
     // times flux; divide by the accumulation's flux, 2 sqrt(pi) times band 0 summed over colours).
     const gl::Buffer& accumulatedOrder() const { return mOrderAccum; }
-    const gl::Texture& albedoVolume() const { return mAlbedo; }
+    const gl::Texture& albedoVolume() const { return mSurface.albedo; }
     int voxelizationCount() const { return mSurfaces.voxelizationCount(); }
 
 private:
     SurfaceVoxelizer mSurfaces;
     gl::Program mInitProg, mEmitProg, mGatherProg, mShadeProg, mResolveProg, mSmoothProg;
     gl::UniformBlock<shared::DiffusionParams> mBlock;
-    gl::Texture mAlbedo, mNormal, mPosition, mExitFront, mExitBack;
+    SurfaceVolumes mSurface;  // albedo, normal, position; the radiance each side leaves
     gl::Texture mView;  // the accumulation, RGBA16F (diffusion.accumulated)
     gl::Texture mViewInFlight, mViewBounces;  // diffusion.inFlight, diffusion.bounces
     gl::Buffer mLight[2], mOutgoing, mAccum;

@@ -8,6 +8,34 @@
 
 namespace gi {
 
+SurfaceVolumes SurfaceVolumes::create(int r) {
+    SurfaceVolumes v;
+    v.albedo = gl::Texture::create3D(GL_R32UI, r, r, r);
+    v.normal = gl::Texture::create3D(GL_R32UI, r, r, r);
+    v.position = gl::Texture::create3D(GL_R32UI, r, r, r);
+    v.exitFront = gl::Texture::create3D(kExitFormat, r, r, r);
+    v.exitBack = gl::Texture::create3D(kExitFormat, r, r, r);
+    return v;
+}
+
+size_t SurfaceVolumes::bytes() const {
+    return albedo.bytes() + normal.bytes() + position.bytes() + exitFront.bytes() + exitBack.bytes();
+}
+
+void SurfaceVolumes::bindVoxels(GLenum access) const {
+    glBindImageTexture(vct::kVCTImageAlbedo, albedo.id(), 0, GL_TRUE, 0, access, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, normal.id(), 0, GL_TRUE, 0, access, GL_R32UI);
+    glBindImageTexture(vct::kVCTImagePosition, position.id(), 0, GL_TRUE, 0, access, GL_R32UI);
+}
+
+void SurfaceVolumes::describe(std::vector<VolumeMemory>& out, int resolution, const std::string& suffix) const {
+    std::string r = std::to_string(resolution) + "^3 ";
+    out.push_back({"albedo" + suffix, r + "R32UI (RGBA8 + count)", albedo.bytes()});
+    out.push_back({"normal" + suffix, r + "R32UI (RGBA8 + count)", normal.bytes()});
+    out.push_back({"position" + suffix, r + "R32UI (RGBA8 + count)", position.bytes()});
+    out.push_back({"exitRadiance" + suffix, r + "R11F_G11F_B10F x 2 (front, back)", exitFront.bytes() + exitBack.bytes()});
+}
+
 SurfaceVoxelizer::SurfaceVoxelizer()
     : mClearProg("vct.clear", {{GL_COMPUTE_SHADER, "vct/clear.comp"}}),
       mInjectProg("vct.inject", {{GL_COMPUTE_SHADER, "vct/inject.comp"}}),
@@ -25,8 +53,8 @@ SurfaceVoxelizer::SurfaceVoxelizer()
     glSamplerParameteri(mShadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
 }
 
-void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                                GLuint position, glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing, GLuint sides) {
+void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& grid, const SurfaceVolumes& v,
+                                glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing, GLuint sides) {
     const int res = grid.resolution;
     vct::VCTParams p = grid;
     p.clipMin = glm::ivec4(clipMin, 0);
@@ -35,9 +63,7 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     if (sides) glBindImageTexture(vct::kVCTImageSides, sides, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     mClearProg.use();
     mBlock.set(p);
-    glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImagePosition, position, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    v.bindVoxels(GL_WRITE_ONLY);
     gl::dispatch3D(res);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
@@ -52,9 +78,7 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindImageTexture(vct::kVCTImagePosition, position, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    v.bindVoxels(GL_READ_WRITE);
     mMaterialBinding.begin(mRepeat.id());
     for (int axis = slicing ? 1 : 0; axis <= (slicing ? 3 : 0); ++axis) {
         p.sliceAxis = axis;
@@ -71,15 +95,13 @@ void SurfaceVoxelizer::voxelize(const FrameContext& ctx, const vct::VCTParams& g
     ++mVoxelizationCount;
 }
 
-void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal,
-                              GLuint position, GLuint exitFront, GLuint exitBack, GLuint sides, GLuint sidesRadiance) {
+void SurfaceVoxelizer::inject(const FrameContext& ctx, const vct::VCTParams& grid, const SurfaceVolumes& v, GLuint sides,
+                              GLuint sidesRadiance) {
     const auto& lights = ctx.settings.lights;
     mInjectProg.use();
-    glBindImageTexture(vct::kVCTImageAlbedo, albedo, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, normal, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImagePosition, position, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageExitFront, exitFront, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
-    glBindImageTexture(vct::kVCTImageExitBack, exitBack, 0, GL_TRUE, 0, GL_READ_WRITE, kExitFormat);
+    v.bindVoxels(GL_READ_ONLY);
+    glBindImageTexture(vct::kVCTImageExitFront, v.exitFront.id(), 0, GL_TRUE, 0, GL_READ_WRITE, SurfaceVolumes::kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitBack, v.exitBack.id(), 0, GL_TRUE, 0, GL_READ_WRITE, SurfaceVolumes::kExitFormat);
     if (sides) {
         glBindImageTexture(vct::kVCTImageSides, sides, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindImageTexture(vct::kVCTImageSidesRadiance, sidesRadiance, 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);

@@ -23,30 +23,43 @@
 #include <glm/glm.hpp>
 
 #include <string>
+#include <vector>
 
 namespace gi {
 
+// One grid's surface voxels: what voxelize() writes (albedo, normal and where the surface lies in
+// its voxel: r32ui RGBA8 running averages with their count) and what inject() writes (the
+// radiance each side of the mean normal leaves, front and back, R11F_G11F_B10F).
+struct SurfaceVolumes {
+    static constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;  // positive HDR colour, half RGBA16F's size
+    static constexpr size_t kBytesPerVoxel = 3 * 4 + 2 * 4;  // the five volumes below, for estimates before allocation
+    gl::Texture albedo, normal, position;
+    gl::Texture exitFront, exitBack;
+
+    static SurfaceVolumes create(int resolution);
+    size_t bytes() const;
+    // Binds albedo, normal and position at their image units (vct_shared.h) with `access`.
+    void bindVoxels(GLenum access) const;
+    // Their entries for a pass's volumeMemory(), names suffixed (a level's "[k]").
+    void describe(std::vector<VolumeMemory>& out, int resolution, const std::string& suffix = "") const;
+};
+
 class SurfaceVoxelizer {
 public:
-    // The exit radiance's format: positive HDR colour, no alpha, half RGBA16F's size.
-    static constexpr GLenum kExitFormat = GL_R11F_G11F_B10F;
-    static constexpr size_t kBytesPerVoxel = 3 * 4 + 2 * 4;  // albedo, normal, position (r32ui); exit front, back
 
     SurfaceVoxelizer();
 
     // Clears [clipMin, clipMax) of the grid (in its toroidal place), then voxelizes the scene
-    // into albedo, normal and position (GL_R32UI volumes of grid.resolution^3; position: where
-    // the surface lies in its voxel) there: one conservative draw, or with `slicing` seed 001's
-    // three draws, one along each axis, into the same volumes.
-    void voxelize(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint position,
-                  glm::ivec3 clipMin, glm::ivec3 clipMax, bool slicing = false, GLuint sides = 0);
-    // The direct light each side of every occupied voxel leaves, into exitFront and exitBack
-    // (kExitFormat volumes of the grid's size), evaluated where its surface lies (position);
-    // lights in batches of kVCTMaxLights.
+    // into v's albedo, normal and position there: one conservative draw, or with `slicing` seed
+    // 001's three draws, one along each axis, into the same volumes.
+    void voxelize(const FrameContext& ctx, const vct::VCTParams& grid, const SurfaceVolumes& v, glm::ivec3 clipMin,
+                  glm::ivec3 clipMax, bool slicing = false, GLuint sides = 0);
+    // The direct light each side of every occupied voxel leaves, into v's exitFront and exitBack,
+    // evaluated where its surface lies (position); lights in batches of kVCTMaxLights.
     // With `sides` (an r32ui volume six grids wide along x, voxelize() filled it) also the
     // radiance of each side into sidesRadiance (RGBA16F, as wide), as inject.comp describes.
-    void inject(const FrameContext& ctx, const vct::VCTParams& grid, GLuint albedo, GLuint normal, GLuint position,
-                GLuint exitFront, GLuint exitBack, GLuint sides = 0, GLuint sidesRadiance = 0);
+    void inject(const FrameContext& ctx, const vct::VCTParams& grid, const SurfaceVolumes& v, GLuint sides = 0,
+                GLuint sidesRadiance = 0);
     bool reloadShaders(std::string& log);
     // Voxelizations run since creation (tests: a static grid is not voxelized twice).
     int voxelizationCount() const { return mVoxelizationCount; }

@@ -17,8 +17,8 @@ namespace {
 // The radiance leaving each side of a voxel's surface (inject, bounce, resolve): positive HDR
 // colour, no alpha, so the packed float format at half RGBA16F's size (5-6 bit mantissas, about
 // 3% steps, far below the voxelization's own error).
-constexpr GLenum kExitFormat = SurfaceVoxelizer::kExitFormat;
-constexpr size_t kVoxelBytes = SurfaceVoxelizer::kBytesPerVoxel;
+constexpr GLenum kExitFormat = SurfaceVolumes::kExitFormat;
+constexpr size_t kVoxelBytes = SurfaceVolumes::kBytesPerVoxel;
 
 size_t voxels(int res) { return size_t(res) * res * res; }
 
@@ -134,13 +134,9 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     int r = mResolution;
     for (int k = 0; k < count; ++k) {
         Level l;
-        l.albedo = gl::Texture::create3D(GL_R32UI, r, r, r);
-        l.normal = gl::Texture::create3D(GL_R32UI, r, r, r);
-        l.position = gl::Texture::create3D(GL_R32UI, r, r, r);
-        l.exitFront = gl::Texture::create3D(kExitFormat, r, r, r);
-        l.exitBack = gl::Texture::create3D(kExitFormat, r, r, r);
+        l.surface = SurfaceVolumes::create(r);
         l.radiance = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
-        mVoxelBytes += l.albedo.bytes() * 3 + l.exitFront.bytes() * 2;
+        mVoxelBytes += l.surface.bytes();
         if (mFaceSides) {
             l.sides = gl::Texture::create3D(GL_R32UI, 6 * r, r, r);
             l.sidesRadiance = gl::Texture::create3D(GL_RGBA16F, 6 * r, r, r);
@@ -228,7 +224,7 @@ bool VCT::updateGrids(const FrameContext& ctx) {
         l.box = nb;
         l.voxelized = true;
         if (!partial) {
-            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.position.id(), glm::ivec3(0), glm::ivec3(r), false, l.sides.id());
+            mSurfaces.voxelize(ctx, gridParams(l), l.surface, glm::ivec3(0), glm::ivec3(r), false, l.sides.id());
             mVoxelizedVoxels[k] = voxels(r);
             continue;
         }
@@ -238,7 +234,7 @@ bool VCT::updateGrids(const FrameContext& ctx) {
             glm::ivec3 lo(0), hi(r);
             if (delta[axis] > 0) lo[axis] = r - delta[axis];
             else hi[axis] = -delta[axis];
-            mSurfaces.voxelize(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.position.id(), lo, hi, false, l.sides.id());
+            mSurfaces.voxelize(ctx, gridParams(l), l.surface, lo, hi, false, l.sides.id());
             glm::ivec3 size = hi - lo;
             mVoxelizedVoxels[k] += size_t(size.x) * size_t(size.y) * size_t(size.z);
         }
@@ -250,16 +246,13 @@ void VCT::inject(const FrameContext& ctx, bool relight) {
     auto pass = ctx.timer.scope("vct.inject");
     if (!relight) return;
     for (Level& l : mLevels)
-        mSurfaces.inject(ctx, gridParams(l), l.albedo.id(), l.normal.id(), l.position.id(), l.exitFront.id(), l.exitBack.id(), l.sides.id(),
-                         l.sidesRadiance.id());
+        mSurfaces.inject(ctx, gridParams(l), l.surface, l.sides.id(), l.sidesRadiance.id());
 }
 
 void VCT::bindVoxelImages(const Level& l) const {
-    glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, l.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImagePosition, l.position.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageExitFront, l.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
-    glBindImageTexture(vct::kVCTImageExitBack, l.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
+    l.surface.bindVoxels(GL_READ_ONLY);
+    glBindImageTexture(vct::kVCTImageExitFront, l.surface.exitFront.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
+    glBindImageTexture(vct::kVCTImageExitBack, l.surface.exitBack.id(), 0, GL_TRUE, 0, GL_READ_ONLY, kExitFormat);
 }
 
 void VCT::resolve(Level& level, bool bounced) {
@@ -268,11 +261,11 @@ void VCT::resolve(Level& level, bool bounced) {
     p.sides = mFaceSides ? 1 : 0;
     mResolveProg.use();
     mBlock.set(p);
-    glBindImageTexture(vct::kVCTImageAlbedo, level.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, level.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageExitFront, (bounced ? level.bouncedFront : level.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
+    glBindImageTexture(vct::kVCTImageAlbedo, level.surface.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageNormal, level.surface.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(vct::kVCTImageExitFront, (bounced ? level.bouncedFront : level.surface.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
                        kExitFormat);
-    glBindImageTexture(vct::kVCTImageExitBack, (bounced ? level.bouncedBack : level.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
+    glBindImageTexture(vct::kVCTImageExitBack, (bounced ? level.bouncedBack : level.surface.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
                        kExitFormat);
     glBindImageTexture(vct::kVCTImageRadiance, level.radiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (mSHVoxels) {
@@ -399,7 +392,7 @@ void VCT::bounce(const FrameContext& ctx, bool relight) {
         const GLuint start[4] = {0, 1, 1, 0};
         glNamedBufferSubData(l.occupiedDispatch.id(), 0, 16, start);
         mBlock.set(gridParams(l));
-        glBindImageTexture(vct::kVCTImageAlbedo, l.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        glBindImageTexture(vct::kVCTImageAlbedo, l.surface.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferDispatch, l.occupiedDispatch.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferVoxels, l.occupiedList.id());
         gl::dispatch3D(mResolution);
@@ -513,8 +506,8 @@ std::vector<DebugView> VCT::debugViews() const {
         std::string s = mLevels.size() > 1 ? std::to_string(k) : "";
         v.push_back({"vct.radiance" + s, l.radiance.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, r, r, 0, 1, 1});
         v.push_back({"vct.opacity" + s, l.radiance.id(), GL_TEXTURE_3D, shared::kViewVoxelAlpha, r, r, 0, 1, 1});
-        v.push_back({"vct.albedo" + s, l.albedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
-        v.push_back({"vct.normal" + s, l.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1});
+        v.push_back({"vct.albedo" + s, l.surface.albedo.id(), GL_TEXTURE_3D, shared::kViewVoxelPacked, r, r, 0, 1, 1});
+        v.push_back({"vct.normal" + s, l.surface.normal.id(), GL_TEXTURE_3D, shared::kViewVoxelPackedNormal, r, r, 0, 1, 1});
     }
     if (mAnisotropic) {  // +X -X +Y -Y +Z -Z from left to right, from mip 1 (mip 0 is level 0 in every slab)
         DebugView aniso{"vct.anisotropic", mAniso.id(), GL_TEXTURE_3D, shared::kViewVoxelColor, 6 * (r / 2), r / 2, 0, 1, 1};
@@ -544,10 +537,7 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
     for (size_t k = 0; k < mLevels.size(); ++k) {
         const Level& l = mLevels[k];
         std::string s = mLevels.size() > 1 ? "[" + std::to_string(k) + "]" : "";
-        v.push_back({"albedo" + s, r + "R32UI (RGBA8 + count)", l.albedo.bytes()});
-        v.push_back({"normal" + s, r + "R32UI (RGBA8 + count)", l.normal.bytes()});
-        v.push_back({"position" + s, r + "R32UI (RGBA8 + count)", l.position.bytes()});
-        v.push_back({"exitRadiance" + s, r + "R11F_G11F_B10F x 2 (front, back)", l.exitFront.bytes() + l.exitBack.bytes()});
+        l.surface.describe(v, mResolution, s);
         if (l.bouncedFront.bytes())
             v.push_back({"bouncedRadiance" + s, r + "R11F_G11F_B10F x 2", l.bouncedFront.bytes() + l.bouncedBack.bytes()});
         v.push_back({"radiance" + s, r + "RGBA16F" + mips, l.radiance.bytes()});

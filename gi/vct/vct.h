@@ -167,8 +167,7 @@ public:
     bool reloadShaders(std::string& log) override;
 
     struct Level {
-        gl::Texture albedo, normal, position;   // r32ui running averages (position: where the surface lies in its voxel)
-        gl::Texture exitFront, exitBack;        // R11F_G11F_B10F radiance each side leaves
+        SurfaceVolumes surface;                 // albedo, normal, position; the radiance each side leaves
         gl::Texture bouncedFront, bouncedBack;  // direct + gathered light after a bounce (bounceCount > 1)
         gl::Buffer occupiedList, occupiedDispatch;  // compact.comp's voxel list and indirect dispatch
         gl::Texture radiance;                   // RGBA16F premultiplied radiance + opacity, mips

@@ -23,8 +23,8 @@ std::vector<VoxelGridView> voxelGrids(const VCT& vct, VCTMode mode) {
     int res = vct.resolution();
     for (const VCT::Level& l : vct.levels()) {
         VoxelGridView g;
-        g.albedo = l.albedo.id();
-        g.normal = l.normal.id();
+        g.albedo = l.surface.albedo.id();
+        g.normal = l.surface.normal.id();
         g.radiance = l.radiance.id();
         g.mipCount = vctMipCount(res);
         g.resolution = res;

@@ -55,12 +55,13 @@ void main() {
     ivec3 t = texelOf(v);
     uint a = imageLoad(uAlbedoVox, t).r;
     vec3 albedo = unpackVoxel(a).rgb;
-    vec3 nn = voxelNormal(imageLoad(uNormalVox, t).r);
+    uint packedNormal = imageLoad(uNormalVox, t).r;
+    vec3 nn = voxelNormal(packedNormal);
     vec3 n = length(nn) > 1e-3 ? normalize(nn) : vec3(0.0, 1.0, 0.0);
     vec3 p = voxelSurface(v, imageLoad(uPositionVox, t).r);
     // E / pi on each side; the surface then leaves albedo * E / pi.
     float rho = dot(albedo, vec3(0.2126, 0.7152, 0.0722));  // Rec. 709 luminance
-    float wb = backWeight(imageLoad(uNormalVox, t).r);
+    float wb = backWeight(packedNormal);
     vec3 front = hemisphere(p, n, rho), back = wb > kVCTBackMinWeight ? wb * hemisphere(p, -n, rho) : vec3(0.0);
     imageStore(uExitFront, t, imageLoad(uDirectFront, t) + vec4(albedo * front, 0.0));
     imageStore(uExitBack, t, imageLoad(uDirectBack, t) + vec4(albedo * back, 0.0));

@@ -7,7 +7,8 @@
 // Albedo is the diffuse albedo (base colour times 1 - metallic); normals are stored as
 // n * 0.5 + 0.5, and the position volume holds where the surface lies in the voxel (0 to 1 per
 // axis: the pixel's centre across the projection, the triangle's depth along it), so injection
-// and bounces work at the surface, not at the voxel centre. Emission is not stored: emissive surfaces reach VCT as area lights (inject.comp).
+// and bounces work at the surface, not at the voxel centre. Emission is not stored: emissive
+// surfaces reach VCT as area lights (inject.comp).
 #include "common/shared.h"
 #include "common/material.glsl"
 #include "vct/vct_shared.h"
