@@ -77,8 +77,10 @@ vec3 sideIrradiance(vec3 p, vec3 n) {
 // normal faces that way along axis a; it leaves albedo * E / pi under its own mean normal, stored
 // times its coverage (the mean over all the voxel's fragments of max(0, n . side)) with the
 // coverage in alpha, so a cone weighs the sides it sees by how much of the voxel faces it.
-void injectSides(ivec3 v, ivec3 t, uint packedAlbedo) {
+void injectSides(ivec3 v, ivec3 t, uint packedAlbedo, uint packedNormal) {
     vec4 albedo = unpackVoxel(packedAlbedo);
+    vec3 meanNormal = voxelNormal(packedNormal);
+    float back = backWeight(packedNormal);
     float total = max(round(albedo.a * kVCTMaxCount), 1.0);
     vec3 p = voxelSurface(v, imageLoad(uPositionVox, t).r);
     for (int s = 0; s < 6; ++s) {
@@ -92,7 +94,10 @@ void injectSides(ivec3 v, ivec3 t, uint packedAlbedo) {
             axis[s / 2] = (s & 1) == 0 ? 1.0 : -1.0;
             float coverage = clamp(round(u.a * kVCTMaxCount) / total * max(dot(n, axis), 0.0), 0.0, 1.0);
             float len = length(n);
-            if (len > 1e-3 && coverage > 0.0) result = vec4(albedo.rgb / kPi * sideIrradiance(p, n / len) * coverage, coverage);
+            // The back of a one-sided voxel (the side against its fragments' mean normal) is
+            // weighed as in the voxel's own injection (backWeight).
+            float weight = dot(n, meanNormal) < 0.0 ? back : 1.0;
+            if (len > 1e-3 && coverage > 0.0) result = vec4(albedo.rgb / kPi * sideIrradiance(p, n / len) * coverage * weight, coverage);
         }
         if (uVCT.accumulate != 0) result.rgb += imageLoad(uSidesRadiance, ts).rgb;
         imageStore(uSidesRadiance, ts, result);
@@ -106,7 +111,7 @@ void main() {
     vec3 front = vec3(0.0), back = vec3(0.0);
     uint packedNormal = imageLoad(uNormalVox, t).r;
     uint packedAlbedo = imageLoad(uAlbedoVox, t).r;
-    if (uVCT.sides != 0) injectSides(v, t, packedAlbedo);
+    if (uVCT.sides != 0) injectSides(v, t, packedAlbedo, packedNormal);
     if (occupied(packedAlbedo)) {
         vec3 n = voxelNormal(packedNormal);
         float len = length(n);
