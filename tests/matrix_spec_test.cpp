@@ -4,6 +4,7 @@
 #include "gi/matrix/process.h"
 #include "gi/matrix/report.h"
 #include "gi/preset/preset.h"
+#include "gi/scene/scene.h"
 #include "gi/util/error.h"
 #include "test_util.h"
 
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 
@@ -321,6 +323,32 @@ TEST(MatrixProcess, TimeoutsCrashesAndFailuresAreReportedNotThrown) {
     std::atomic<bool> cancel{true};
     ProcessResult cancelled = runProcess("/bin/sh", {"-c", "sleep 30"}, dir / "c.txt", 60.0, &cancel);
     EXPECT_TRUE(cancelled.cancelled);
+}
+
+// Every spec shipped in presets/matrix loads and expands, and the scenes it keeps in the
+// repository (not those under ../shared, which may be absent) load with a light and a camera of
+// their own, as its cells render them with no preset.
+TEST(MatrixSpec, ShippedSpecsLoadAndTheirOwnScenesToo) {
+    const std::filesystem::path dir = std::filesystem::path(GI_PRESET_DIR) / "matrix";
+    int specs = 0, scenes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        if (entry.path().extension() != ".json") continue;
+        ++specs;
+        MatrixSpec spec = loadSpec(entry.path());
+        EXPECT_FALSE(expandCells(spec).empty()) << entry.path();
+        for (const SceneSpec& s : spec.scenes) {
+            if (s.input.empty() || s.input.find("shared") != std::string::npos) continue;
+            ++scenes;
+            ASSERT_TRUE(std::filesystem::exists(s.input)) << entry.path() << ": " << s.input;
+            if (std::filesystem::path(s.input).extension() != ".gltf") continue;
+            Scene scene = loadGLTF(s.input);
+            EXPECT_FALSE(scene.indices.empty()) << s.input;
+            EXPECT_FALSE(scene.lights.empty()) << s.input << ": no light of its own";
+            EXPECT_FALSE(scene.framedCamera) << s.input << ": no camera of its own";
+        }
+    }
+    EXPECT_GE(specs, 5);
+    EXPECT_GE(scenes, 5) << "presets/matrix/rooms";
 }
 
 }  // namespace
