@@ -810,7 +810,10 @@ TEST_F(VCTGL, TraceCountsItsWork) {
     auto base = work("anisotropic");
     EXPECT_EQ(base["tracedPixels"], double(fs.width * fs.height));
     EXPECT_EQ(base["cones"], base["tracedPixels"] * double(makeConeSet(fs.vct).cones.size() + 1));
-    EXPECT_EQ(base["textureCallsPerSample"], 3.0) << "three directions from the atlas, every sample";
+    // Up to three directions from the atlas, one per axis the cone has a component along: the
+    // rooms' walls lie along the axes, and so do some cones of the pixels that face them.
+    EXPECT_GT(base["textureCallsPerSample"], 1.0);
+    EXPECT_LT(base["textureCallsPerSample"], 3.0) << "a cone reads the slab of an axis it has no component along";
     EXPECT_GE(base["samplesPerCone"], 1.0);
     EXPECT_NEAR(base["samplesPerPixel"], base["samples"] / base["tracedPixels"], 1e-9 * base["samplesPerPixel"]);
     fs.vct.stepMultiplier = 0.5f;
@@ -823,7 +826,10 @@ TEST_F(VCTGL, TraceCountsItsWork) {
     EXPECT_LT(shortCones["samplesPerCone"], 0.8 * base["samplesPerCone"]);
     fs.vct.maxDistance = 0.0f;
     fs.vct.faceSides = true;
-    EXPECT_EQ(work("face sides")["textureCallsPerSample"], 7.0) << "three directions from the atlas and from its coverage, and the centroid";
+    // The centroid, and for each direction read the atlas and its coverage.
+    double sides = work("face sides")["textureCallsPerSample"];
+    EXPECT_GT(sides, 3.0);
+    EXPECT_LT(sides, 7.0);
     fs.vct.faceSides = false;
     fs.vct.anisotropic = false;
     EXPECT_EQ(work("isotropic")["textureCallsPerSample"], 1.0);

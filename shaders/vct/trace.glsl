@@ -93,13 +93,30 @@ vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
     float x = clamp(tc.x, halfTexel, 1.0 - halfTexel);
     float edge = min(tc.x, 1.0 - tc.x) * size;
     float fade = mix(clamp(edge + 0.5, 0.0, 1.0), clamp(0.5 * edge + 0.5, 0.0, 1.0), f);
-    vec3 px = vec3((x + slab.x) / 6.0, tc.yz), py = vec3((x + slab.y) / 6.0, tc.yz), pz = vec3((x + slab.z) / 6.0, tc.yz);
-    gVCTFetches += VCT_SIDES != 0 ? 6u : 3u;
-    vec4 r = fade * (w.x * textureLod(uAniso, px, lod) + w.y * textureLod(uAniso, py, lod) + w.z * textureLod(uAniso, pz, lod));
+    // Only the slabs of the axes the direction has a component along, in x, y, z order: a loop
+    // whose trip count is that number, since llvmpipe leaves a loop once every invocation it runs
+    // together has (cones of neighbouring pixels on one wall share their zero components), where
+    // a zero-weight read in a sum or a branch is still executed, masked.
+    int axes = (w.x > 0.0 ? 1 : 0) | (w.y > 0.0 ? 2 : 0) | (w.z > 0.0 ? 4 : 0);
+    int count = bitCount(axes);
+    gVCTFetches += uint(VCT_SIDES != 0 ? 2 * count : count);
+    vec4 r = vec4(0.0);
+#if VCT_SIDES
+    float coverage = 0.0;
+#endif
+    for (int k = 0; k < count; ++k) {
+        int a = findLSB(axes);
+        axes &= axes - 1;
+        vec3 p = vec3((x + slab[a]) / 6.0, tc.yz);
+        r += w[a] * textureLod(uAniso, p, lod);
+#if VCT_SIDES
+        coverage += w[a] * textureLod(uAnisoCoverage, p, lod).r;
+#endif
+    }
+    r *= fade;
 #if VCT_SIDES
     // The mean radiance of the surfaces facing the cone (the coverage atlas, mip.comp), times the opacity.
-    float coverage = fade * (w.x * textureLod(uAnisoCoverage, px, lod).r + w.y * textureLod(uAnisoCoverage, py, lod).r +
-                             w.z * textureLod(uAnisoCoverage, pz, lod).r);
+    coverage *= fade;
     return vec4(coverage > 1e-6 ? r.rgb / coverage * r.a : vec3(0.0), r.a);
 #else
     return r;  // without face sides the coverage is the opacity, so r is the premultiplied radiance
