@@ -330,24 +330,29 @@ TEST(MatrixProcess, TimeoutsCrashesAndFailuresAreReportedNotThrown) {
 // cells render them with no preset. A spec that names ../shared's scenes loads only where they
 // are (loadSpec refuses a missing asset); elsewhere it must still be valid JSON.
 TEST(MatrixSpec, ShippedSpecsLoadAndTheirOwnScenesToo) {
-    const std::filesystem::path dir = std::filesystem::path(GI_PRESET_DIR) / "matrix";
-    const bool shared = std::filesystem::exists(std::filesystem::path(GI_SHARED_DIR) / "scenes");
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(GI_PRESET_DIR) / "matrix";
+    const fs::path shared = fs::weakly_canonical(GI_SHARED_DIR);
+    auto underShared = [&](const fs::path& p) {
+        fs::path q = fs::weakly_canonical(p);
+        return std::mismatch(shared.begin(), shared.end(), q.begin(), q.end()).first == shared.end();
+    };
     int specs = 0, scenes = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
         if (entry.path().extension() != ".json") continue;
         ++specs;
         json j = json::parse(std::ifstream(entry.path()));
         bool needsShared = false;
         for (const json& s : j.value("scenes", json::array()))
-            if (s.is_object() && s.value("input", std::string()).find("shared/") != std::string::npos) needsShared = true;
-        if (needsShared && !shared) continue;
+            if (s.is_object() && underShared(dir / s.value("input", std::string()))) needsShared = true;
+        if (needsShared && !fs::exists(shared / "scenes")) continue;
         MatrixSpec spec = loadSpec(entry.path());
         EXPECT_FALSE(expandCells(spec).empty()) << entry.path();
         for (const SceneSpec& s : spec.scenes) {
-            if (s.input.empty() || s.input.find("shared") != std::string::npos) continue;
+            if (s.input.empty() || underShared(s.input)) continue;
             ++scenes;
-            ASSERT_TRUE(std::filesystem::exists(s.input)) << entry.path() << ": " << s.input;
-            if (std::filesystem::path(s.input).extension() != ".gltf") continue;
+            ASSERT_TRUE(fs::exists(s.input)) << entry.path() << ": " << s.input;
+            if (fs::path(s.input).extension() != ".gltf") continue;
             Scene scene = loadGLTF(s.input);
             EXPECT_FALSE(scene.indices.empty()) << s.input;
             EXPECT_FALSE(scene.lights.empty()) << s.input << ": no light of its own";

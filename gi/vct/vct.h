@@ -95,8 +95,10 @@
 //     components, and llvmpipe leaves a loop once all the invocations it runs together have,
 //     where a zero-weight read in a sum is executed anyway. vct_cornell's issue-17 configuration
 //     (1280x720, trace scale 1, nine cones and the specular one): 3.00 -> 2.71 calls per sample,
-//     the same pixels, the run's CPU time 12.98 -> 11.60 s (medians of 4 alternating runs; the
-//     trace's own wall time moves less than the machine's noise).
+//     the same pixels (SSIM 0.8025 against the reference at 320x180, unchanged), the run's CPU
+//     time 12.98 -> 11.60 s (medians of 4 alternating runs; the trace's own wall time moves less
+//     than the machine's noise). Trace 1437 ms against the isotropic trace's 783 ms (SSIM 0.7204),
+//     1.84x, in 5 alternating runs; frame 1663 ms against issue 17's peer anchor of 1538 ms.
 //   - Cone samples read kVCTFootprintLod (1.25) mips finer than the cone's diameter (issue 13):
 //     a trilinear sample of a mip reaches 1.5 texels, so at the diameter's own mip every sample
 //     of a 60-degree cone took in the receiver's own surface, and a floor under a lit panel
