@@ -251,10 +251,11 @@ TEST_F(VCTGL, MipsAreConsistent) {
     }
 }
 
-// Face sides' centroid volume (resolve.comp): at mip 0 each occupied voxel's centre in voxels
-// times its opacity (1) and the opacity, 0 elsewhere; each mip above the mean of its 8 children,
-// so a texel's rgb / a is the mean position of the voxels it holds.
-TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheVoxels) {
+// Face sides' centroid volume (resolve.comp): at mip 0 where each occupied voxel's surface lies,
+// in voxels (the position volume), times its opacity (1) and the opacity, 0 elsewhere; each mip
+// above the mean of its 8 children, so a texel's rgb / a is the mean position of the surfaces it
+// holds.
+TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheSurfaces) {
     Scene scene = makeBuiltinScene("cornell");
     FrameSettings fs = cornellFrame(scene, 32);
     fs.vct.faceSides = true;
@@ -266,19 +267,25 @@ TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheVoxels) {
     const gl::Texture& centroid = v.centroidVolume();
     ASSERT_EQ(centroid.width(), res);
     std::vector<float> opacity = readRGBA(v.levels()[0].radiance, 0), fine = readRGBA(centroid, 0);
-    double worst = 0;
+    // Where each voxel's surface lies in it (voxelize.frag's position volume: RGBA8, 0 to 1 per axis).
+    std::vector<uint32_t> position = readPacked(v.levels()[0].surface.position);
+    double worst = 0, offCentre = 0;
     size_t occupied = 0;
     for (int z = 0; z < res; ++z)
         for (int y = 0; y < res; ++y)
             for (int x = 0; x < res; ++x) {
                 float a = opacity[idx(res, x, y, z) + 3];
                 occupied += a > 0.5f;
-                glm::vec4 expected(glm::vec3(x, y, z) + 0.5f, 1.0f);
+                uint32_t packed = position[size_t(idx(res, x, y, z)) / 4];
+                glm::vec3 inside(float(packed & 255u) / 255.0f, float((packed >> 8) & 255u) / 255.0f, float((packed >> 16) & 255u) / 255.0f);
+                if (a > 0.5f) offCentre = std::max(offCentre, double(glm::length(inside - 0.5f)));
+                glm::vec4 expected(glm::vec3(x, y, z) + inside, 1.0f);
                 expected *= a;
                 for (int c = 0; c < 4; ++c) worst = std::max(worst, double(std::abs(fine[idx(res, x, y, z) + size_t(c)] - expected[c])));
             }
     EXPECT_GT(occupied, size_t(res * res * 4)) << "the cornell box's six walls are voxelized";
-    EXPECT_LT(worst, 0.02) << "mip 0: the voxel centre times the opacity (fp16 storage)";
+    EXPECT_GT(offCentre, 0.25) << "the box's walls do not all lie at their voxels' centres";
+    EXPECT_LT(worst, 0.02) << "mip 0: where the voxel's surface lies, times the opacity (fp16 storage)";
     expectBoxFilteredMips(centroid, res, "centroid");
 }
 
