@@ -156,6 +156,13 @@ std::string lpvIgnoredLights(const std::vector<LightSettings>& lights);
 // Kept at 32^3: Sponza (0.761; 0.722 on 24^3, 0.584 on 16^3), basic (0.951), an open street
 // (0.872), a 20 m corridor (0.780; 0.690 on 24^3), a colonnade (0.799). The propagation's work
 // falls with the cells: 24^3 is 0.42 and 16^3 0.125 of 32^3's cell-steps.
+// Tried and not kept: more steps on a coarser fitted grid (propagationSteps x (gridResolution /
+// fitted)^2: 128 on 16^3, 57 on 24^3, at most half the cell-steps of 32^3 x 32). Light then
+// reached the far walls of a 5 x 3 x 5 m room lit through a window (SSIM 0.277 -> 0.394 at
+// 128x96), and the Cornell files scored 0.004-0.032 higher, but the steps' sum keeps growing in a
+// closed room: LPVGL.PointLightIndirectMatchesTheReference (one bounce against the path tracer's
+// one bounce) read 1.53x the reference on 16^3 against its bound of 1.25x, so the gains were
+// added brightness standing in for missing bounces, not transport.
 // The fit's constants, kLPVFitMinCells, kLPVFitCellsPerGap and kLPVFitStep, are in
 // lpv_settings.h beside fitGrid, whose description states them.
 
