@@ -11,6 +11,7 @@
 #include "test_util.h"
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include <cmath>
 #include <map>
@@ -277,7 +278,7 @@ TEST_F(VCTGL, CentroidsAreTheMeanPositionOfTheSurfaces) {
                 float a = opacity[idx(res, x, y, z) + 3];
                 occupied += a > 0.5f;
                 uint32_t packed = position[size_t(idx(res, x, y, z)) / 4];
-                glm::vec3 inside(float(packed & 255u) / 255.0f, float((packed >> 8) & 255u) / 255.0f, float((packed >> 16) & 255u) / 255.0f);
+                glm::vec3 inside(glm::unpackUnorm4x8(packed));
                 if (a > 0.5f) offCentre = std::max(offCentre, double(glm::length(inside - 0.5f)));
                 glm::vec4 expected(glm::vec3(x, y, z) + inside, 1.0f);
                 expected *= a;

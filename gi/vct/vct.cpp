@@ -261,9 +261,7 @@ void VCT::resolve(Level& level, bool bounced) {
     p.sides = mFaceSides ? 1 : 0;
     mResolveProg.use();
     mBlock.set(p);
-    glBindImageTexture(vct::kVCTImageAlbedo, level.surface.albedo.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImageNormal, level.surface.normal.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(vct::kVCTImagePosition, level.surface.position.id(), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    level.surface.bindVoxels(GL_READ_ONLY);  // albedo, normal, and the position for the centroids
     glBindImageTexture(vct::kVCTImageExitFront, (bounced ? level.bouncedFront : level.surface.exitFront).id(), 0, GL_TRUE, 0, GL_READ_ONLY,
                        kExitFormat);
     glBindImageTexture(vct::kVCTImageExitBack, (bounced ? level.bouncedBack : level.surface.exitBack).id(), 0, GL_TRUE, 0, GL_READ_ONLY,

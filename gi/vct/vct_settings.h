@@ -114,9 +114,10 @@ struct VCTSettings {
     // +2.9 / +8.2 / +5.6 % before), +1.4 / +4.4 / +3.8 % at one bounce; the defaults give
     // -0.0 / +4.7 / +3.9 % at one bounce and +1.8 / +4.2 / +2.6 % at three. The bounced energy
     // in the voxels varies less with the shift than the defaults' (+3.6 against +4.4 %), so the
-    // excess is the screen trace's sampling of it. Passing it cost quality each time: nudge 4
-    // (+3.1 %; the 17 scenes' mean 0.741), a footprint lod of 1.0 for face sides (+3.7 %; 0.758,
-    // two-room leak 5.3 %), stepMultiplier 0.75 (+4.7 %, a third more samples);
+    // excess is the screen trace's sampling of it. Passing it cost quality each time (the 17
+    // scenes' mean against 1024-spp references, where the defaults score 0.756 and face sides
+    // with the tail 0.781): nudge 4 (+3.1 %; 0.741), a footprint lod of 1.0 for face sides
+    // (+3.7 %; 0.758, two-room leak 5.3 %), stepMultiplier 0.75 (+4.7 %, a third more samples);
     // kVCTSideMargin 0 or 0.15 did not bring it under 5 %),
     // and the trace's 7 texture calls per sample against 3 (vct_cornell at 1280x720, trace 430 ->
     // 790 ms, steady frame 540 -> 900 ms on llvmpipe). The two-room leak with them: 5.7 %.

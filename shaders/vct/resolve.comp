@@ -40,10 +40,7 @@ void main() {
         alpha = 1.0;
     }
     imageStore(uRadiance, t, vec4(front + back, alpha));
-    if (uVCT.sides != 0) {
-        vec3 inside = uVCT.wrapOffset.w != 0 ? voxelSurfaceOffset(imageLoad(uPositionVox, t).r) : vec3(0.5);
-        imageStore(uCentroid, t, vec4((vec3(v) + inside) * alpha, alpha));
-    }
+    if (uVCT.sides != 0) imageStore(uCentroid, t, vec4(voxelSurfaceCell(v, imageLoad(uPositionVox, t).r) * alpha, alpha));
     if (uVCT.sh != 0) {
         vec4 hf = shHemisphere(n), hb = shHemisphere(-n);
         imageStore(uSHR, t, front.r * hf + back.r * hb);
