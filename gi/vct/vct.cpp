@@ -94,10 +94,8 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     size_t perLevel = voxels(res) * kVoxelBytes + mipChain(8, res, mips);
     if (s.bounceCount > 1) perLevel += 2 * voxels(res) * 8 + voxels(res) * 4;  // bounced radiance, occupied list
     size_t bytes = perLevel * size_t(levelCountOf(s));
-    if (s.traceScale < 1.0f) {
-        double scaled = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
-        bytes += size_t(scaled) * 16;  // the low-resolution trace targets
-    }
+    double traced = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
+    bytes += size_t(traced) * 16;  // the traced images the upsampling filter reads
     if (anisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
     if (anisotropicOn(s) && s.faceSides) {
         bytes += 6 * mipChain(2, res, mips) + mipChain(8, res, mips);   // the coverage atlas, the centroids
@@ -455,8 +453,9 @@ void VCT::trace(const FrameContext& ctx) {
     }
     glm::ivec2 full(ctx.width, ctx.height);
     glm::ivec2 low = glm::max(glm::ivec2(glm::ceil(glm::vec2(full) * s.traceScale)), glm::ivec2(1));
-    bool scaled = low != full;
-    if (scaled && (mLowIndirect.width() != low.x || mLowIndirect.height() != low.y)) {
+    // The trace writes its own images at every scale: the upsampling filter averages out the
+    // trace's 2 x 2 sample pattern (upsample.comp), at traceScale 1 too.
+    if (mLowIndirect.width() != low.x || mLowIndirect.height() != low.y) {
         mLowIndirect = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
         mLowSpecular = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
     }
@@ -469,9 +468,8 @@ void VCT::trace(const FrameContext& ctx) {
     glBindTextureUnit(shared::kUnitNormal, ctx.normal);
     glBindTextureUnit(shared::kUnitMaterial, ctx.material);
     glBindTextureUnit(shared::kUnitDepth, ctx.depth);
-    glBindImageTexture(vct::kVCTImageIndirect, scaled ? mLowIndirect.id() : ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(vct::kVCTImageSpecular, scaled ? mLowSpecular.id() : ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                       GL_RGBA16F);
+    glBindImageTexture(vct::kVCTImageIndirect, mLowIndirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(vct::kVCTImageSpecular, mLowSpecular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (!mWork.id()) mWork = gl::createBuffer(2 * vct::kVCTWorkCount * sizeof(GLuint), nullptr, 0);
     glClearNamedBufferData(mWork.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferWork, mWork.id());
@@ -479,7 +477,6 @@ void VCT::trace(const FrameContext& ctx) {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     for (GLuint u = GLuint(vct::kVCTUnitRadiance); u <= GLuint(vct::kVCTUnitSH + 2); ++u) glBindSampler(u, 0);
     glBindSampler(vct::kVCTUnitSky, 0);
-    if (!scaled) return;
     auto up = ctx.timer.scope("vct.upsample");
     vct::VCTParams u{};
     u.imageSize = glm::ivec4(low, full);
@@ -563,7 +560,7 @@ std::vector<std::string> VCT::passNames(const FrameSettings& fs) const {
     std::vector<std::string> names{"vct.voxelize", "vct.inject", "vct.mip"};
     if (fs.vct.bounceCount > 1) names.push_back("vct.bounce");
     names.push_back("vct.trace");
-    if (fs.vct.traceScale < 1.0f) names.push_back("vct.upsample");
+    names.push_back("vct.upsample");
     return names;
 }
 

@@ -32,7 +32,7 @@
 //   steady state) the lit volumes are kept and those passes do nothing but open their timers
 //   (render.keepStaticWork; issue 17 item 4).
 //
-// Face sides (`faceSides`, a developer setting, off): anisotropic voxels that keep each face of a
+// Face sides (`faceSides`, a developer setting, on by default): anisotropic voxels that keep each face of a
 // surface on its own side, for thin walls (issue 13 item 6). The voxelizer also writes six
 // per-side normal volumes (both faces of every fragment; a face skips a voxel lying wholly behind
 // it; a surface within kVCTSideMargin of a voxel boundary also fills the voxel across it),
@@ -47,17 +47,19 @@
 // into its footprint, and by its axis it read the floor's unlit underside, an opaque black
 // occluder (vct_cornell 0.783 -> 0.829 SSIM at 128x96 with that change; the shift test's worst
 // +16.7 % -> +5.2 %). With bounceTail as well (the bounces left out, bounce.comp) vct_cornell
-// reaches 0.855, the shift test +4.9 % and the two-room leak 4.9 % (35.0 % with the defaults),
-// but 6-25 % at other alignments of the wall (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls), and the Cornell presets
-// and boxes stay 0.003-0.018 SSIM below the isotropic default, whose surfaces glow on both sides
-// (the light that leaks through thin walls also brightens closed boxes from inside). So it stays
-// off; a sample makes 7 texture calls instead of 3.
+// reached 0.855. They became the defaults, with the tail, once the screen trace staggered their
+// samples by pixel (trace.glsl gVCTJitter), which brought the shift test under its 5 % (figures
+// and what they cost in vct_settings.h). The two-room leak is then 6.1 % where the test scene's
+// wall falls and 7-25 % at other alignments (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls):
+// issue 13's 5 % is not met.
 //   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
 //      specular cone along the reflection gives radiance for the composite's split-sum weight;
 //      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With
-//      traceScale < 1 the cones run on a smaller image and a joint bilateral filter (depth and
-//      normal) upsamples it [vct.upsample]: diffuse indirect light is smooth, and the trace is
-//      most of the frame's cost on a CPU rasterizer. The trace counts its work (traced pixels,
+//      traceScale < 1 the cones run on a smaller image: diffuse indirect light is smooth, and the
+//      trace is most of the frame's cost on a CPU rasterizer. A joint bilateral filter (depth and
+//      normal) upsamples it [vct.upsample], at scale 1 too, since it also averages out the 2 x 2
+//      pattern by which neighbouring traced pixels stagger their cones' samples along the cone
+//      (so the indirect light does not depend on where the scene falls in the grid). The trace counts its work (traced pixels,
 //      cones, cone steps, texture calls; report(), stats.json "vct"), which carries over to a GPU.
 //
 // Grids (`mode`):

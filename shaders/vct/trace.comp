@@ -44,6 +44,11 @@ void trace(ivec2 q) {
         vec3 p = w.xyz / w.w;
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
         mat3 frame = tangentFrame(n);
+#if VCT_SIDES
+        // The 2 x 2 ordered pattern of the cones' sample phases (trace.glsl gVCTJitter): 1/8, 5/8, 7/8, 3/8.
+        ivec2 b = q & 1;
+        gVCTJitter = (float(2 * (b.x ^ b.y) + b.y) + 0.5) * 0.25;
+#endif
         float visibility = 0.0;
         countWork(kVCTWorkPixels, 1u);
         countWork(kVCTWorkCones, uint(uVCT.coneCount + (uVCT.specularCone != 0 ? 1 : 0)));

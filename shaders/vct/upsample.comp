@@ -1,8 +1,13 @@
-// Joint bilateral upsampling of the cone trace (traceScale < 1): each full-resolution pixel takes
-// the 2 x 2 traced pixels around it, weighted bilinearly and by how well each one's surface
-// matches its own: relative view depth (exp(-|dz| / (z * depthTolerance))) and normal
+// Joint bilateral upsampling of the cone trace: each full-resolution pixel takes the 4 x 4 traced
+// pixels around it, weighted by a tent two traced pixels wide each way and by how well each one's
+// surface matches its own: relative view depth (exp(-|dz| / (z * depthTolerance))) and normal
 // (max(n . n_q, 0)^8). Where no neighbour matches (thin objects, silhouettes) the best match
 // alone is used. The traced pixel q stands for the full pixel under its centre, as in trace.comp.
+// Why the wide tent: the trace staggers its cones' samples by a 2 x 2 pattern (trace.glsl
+// gVCTJitter), and along each axis a tent of half-width 2 gives the even and the odd traced pixels
+// the same total weight wherever the full pixel lies (t + 2 - t against 1 - t + 1 + t), so the
+// pattern cancels on any surface the weights do not cut; a bilinear 2 x 2 left it as a
+// checkerboard. It runs at traceScale 1 too, where it is a 1-2-1 filter.
 #include "vct/vct_shared.h"
 
 #include "common/shared.h"
@@ -38,16 +43,16 @@ void main() {
     vec3 indirect = vec3(0.0), specular = vec3(0.0);
     float total = 0.0, best = -1.0;
     vec3 bestIndirect = vec3(0.0), bestSpecular = vec3(0.0);
-    for (int i = 0; i < 4; ++i) {
-        ivec2 o = ivec2(i & 1, i >> 1);
+    for (int i = 0; i < 16; ++i) {
+        ivec2 o = ivec2(i & 3, i >> 2) - 1;
         ivec2 q = clamp(base + o, ivec2(0), uVCT.imageSize.xy - 1);
         ivec2 qp = min(ivec2((vec2(q) + 0.5) * uVCT.toFull.xy), uVCT.imageSize.zw - 1);
         float dq = texelFetch(uDepth, qp, 0).r;
         if (dq >= 1.0) continue;
         float match = exp(-abs(viewDepth(dq) - z) / (z * kDepthTolerance)) *
                       pow(max(dot(n, normalize(texelFetch(uNormal, qp, 0).xyz)), 0.0), 8.0);
-        float bilinear = (o.x == 1 ? t.x : 1.0 - t.x) * (o.y == 1 ? t.y : 1.0 - t.y);
-        float w = match * max(bilinear, 1e-3);
+        vec2 tent = max(2.0 - abs(vec2(o) - t), 0.0);
+        float w = match * max(tent.x * tent.y, 1e-3);
         vec3 li = texelFetch(uLowIndirect, q, 0).rgb, ls = texelFetch(uLowSpecular, q, 0).rgb;
         indirect += w * li;
         specular += w * ls;
