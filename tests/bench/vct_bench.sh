@@ -3,7 +3,8 @@
 #   tests/bench/vct_bench.sh [build-dir] [repeats]
 # 1. The issue's configuration: cornell at 1280x720, a 64^3 grid, nine diffuse cones plus the
 #    specular cone, voxelized every frame (as a peer that rebuilds the grid per frame), at trace
-#    scales 1, 0.5 and 0.25, anisotropic (the preset's default) and isotropic at 1 and 0.25. The
+#    scales 1, 0.5 and 0.25, anisotropic with face sides (the defaults), without them at 0.25,
+#    and isotropic at 1 and 0.25. The
 #    peer's frame is an anchor quoted from issue 17, not measured here (Friduric's VCT rebuilt and
 #    run side by side with the project on one idle llvmpipe machine of this kind, 2 cores,
 #    2026-12-02): 1538 ms (full-resolution trace, a shadow cone, no specular cone). The 5.9 s
@@ -65,6 +66,10 @@ for scale in 1 0.5 0.25; do
   run "cornell 1280x720 64^3 9+1 cones, anisotropic, traceScale $scale" 1 presets/vct_cornell.json "${cornell[@]}" \
     --set vct.traceScale=$scale
 done
+# Face sides (on by default since issue 13's stop 45): the same atlas without them, and without
+# the bounce tail that comes with them.
+run "cornell 1280x720 64^3 9+1 cones, anisotropic without face sides, traceScale 0.25" 1 presets/vct_cornell.json \
+  "${cornell[@]}" --set vct.traceScale=0.25 --set vct.faceSides=false --set vct.bounceTail=false
 for scale in 1 0.25; do
   run "cornell 1280x720 64^3 9+1 cones, isotropic, traceScale $scale" 1 presets/vct_cornell.json "${cornell[@]}" \
     --set vct.traceScale=$scale --set vct.anisotropic=false
