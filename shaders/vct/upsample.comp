@@ -49,8 +49,10 @@ void main() {
         ivec2 qp = min(ivec2((vec2(q) + 0.5) * uVCT.toFull.xy), uVCT.imageSize.zw - 1);
         float dq = texelFetch(uDepth, qp, 0).r;
         if (dq >= 1.0) continue;
-        float match = exp(-abs(viewDepth(dq) - z) / (z * kDepthTolerance)) *
-                      pow(max(dot(n, normalize(texelFetch(uNormal, qp, 0).xyz)), 0.0), 8.0);
+        float c = max(dot(n, normalize(texelFetch(uNormal, qp, 0).xyz)), 0.0);
+        c *= c;
+        c *= c;
+        float match = exp(-abs(viewDepth(dq) - z) / (z * kDepthTolerance)) * (c * c);
         vec2 tent = max(2.0 - abs(vec2(o) - t), 0.0);
         float w = match * max(tent.x * tent.y, 1e-3);
         vec3 li = texelFetch(uLowIndirect, q, 0).rgb, ls = texelFetch(uLowSpecular, q, 0).rgb;
