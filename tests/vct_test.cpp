@@ -449,7 +449,7 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
     fs.camera.up = {0.0f, 0.0f, -1.0f};
     fs.camera.fovY = 20.0f;
     fs.vct.bounceCount = 1;  // one bounce, as the analytic value and the reference below count it
-    fs.vct.faceSides = false;  // first without face sides (the defaults' since issue 13)
+    fs.vct.faceSides = false;  // first without face sides (which are the defaults)
     Renderer r;
     r.setScene(scene);
     // The panel's radiance at (x, z): albedo / pi * I cos / r^2 = I h / (pi r^3), r from the lamp
@@ -497,7 +497,8 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
         std::printf("face sides: floor indirect at nudge %.0f: %.4f (%.0f %% of the analytic %.4f)\n", nudge, sides,
                     100.0 * sides / expected, expected);
         // Where the samples fall on the one-voxel panel 16 voxels away moved it from 74 to 109 %
-        // before the screen trace staggered them by pixel (trace.glsl gVCTJitter); 90 % at each since.
+        // before the screen trace staggered them by pixel (traceCone's phase, trace.glsl); 90 % at
+        // each since.
         EXPECT_GT(sides / expected, 0.7) << "nudge " << nudge << ": the floor's own plane blocks nothing";
         EXPECT_LT(sides / expected, 1.25) << "nudge " << nudge;
     }
@@ -515,7 +516,7 @@ TEST_F(VCTGL, NudgeRemovesSelfOcclusionOnAFlatFloor) {
 // box's one-voxel walls, which the self-occlusion had hidden, so it is not done. Face sides (the
 // defaults) drop the receiver's own plane instead, and gather 100 % of the open sky; through
 // the closed box's walls they let 7.9 % of it through (bound 10 %), as the mean of the four
-// sample phases the screen trace staggers its pixels by (trace.glsl gVCTJitter): each phase
+// sample phases the screen trace staggers its pixels by (traceCone's phase, trace.glsl): each phase
 // alone lets 11.3, 5.7, 4.5 and 9.9 % through, and the unstaggered one, which every pixel used
 // before, 3.9 %. The vertical cone lets most through (12.7 % of its sky against 6.9 % for the
 // others): its samples straddle the one-voxel ceiling 16 voxels up, each some way from it in
@@ -533,7 +534,7 @@ TEST_F(VCTGL, ConesThatEndUnoccludedSeeTheSky) {
     r.setScene(open);
     double none = test::meanIndirect(r, frame(open, "none", true));
     EXPECT_NEAR(none, 0.8, 0.02) << "the irradiance map of a constant sky of radiance 1";
-    ASSERT_TRUE(frame(open, "vct", true).vct.faceSides == VCTSettings{}.faceSides) << "face sides are the defaults";
+    ASSERT_TRUE(VCTSettings{}.faceSides) << "the defaults this test describes";
     for (bool sides : {true, false}) {
         r.setScene(open);
         double vct = test::meanIndirect(r, frame(open, "vct", sides));
@@ -593,8 +594,8 @@ TEST_F(VCTGL, ASunOnTheRoofDoesNotLightTheRoomBelow) {
 // columns 31-32 zeroed 6 % remained, sent through the coarse mips whose texels straddle the wall).
 // The defaults (face sides, the tail, three bounces) leak 6.1 %, above issue 13's 5 %: 2.6 % with
 // one bounce, 3.8 % with two and no tail, 5.2 % with two and the tail (4.9 % before the screen
-// trace staggered its samples, trace.glsl gVCTJitter, which also darkened the lit room 9 %: the
-// phase every pixel had sampled at was a bright one there). In the dark room the leaked light
+// trace staggered its samples by traceCone's phase in trace.glsl, which also darkened the lit
+// room 9 %: the phase every pixel had sampled at was a bright one there). In the dark room the leaked light
 // lies along the shared wall's edges: floor, ceiling and side walls gather the lit room's floor,
 // ceiling and walls through mip texels that straddle the wall, which an edge-on wall does not
 // occlude. Not at every alignment of the wall either (the next test). SH voxels, which radiate
@@ -637,7 +638,7 @@ TEST_F(VCTGL, TwoRoomLeak) {
 // and 0.75 of a voxel along x under a grid that stays put (two tiny black quads two voxels
 // outside the rooms fix the bounds), as DiffusionGL.TheClosedRoomStaysDarkWhereverTheWallFalls
 // does. Face sides with the tail (the defaults) leak 7.4, 24.5, 23.8 and 23.0 % (7.6, 26.0, 24.2
-// and 21.4 % before the screen trace staggered their samples, trace.glsl gVCTJitter), isotropic
+// and 21.4 % before the screen trace staggered their samples, traceCone's phase, trace.glsl), isotropic
 // content 68.1, 64.8, 61.2 and 57.4 % (issue 13's 5 % is not met at any of them; before injection
 // moved to the surfaces and to three bounces: 6.3, 25.5, 24.2 and 21.3 %, and 38.8, 60.7, 57.3
 // and 53.1 %).

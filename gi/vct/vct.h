@@ -32,8 +32,8 @@
 //   steady state) the lit volumes are kept and those passes do nothing but open their timers
 //   (render.keepStaticWork; issue 17 item 4).
 //
-// Face sides (`faceSides`, a developer setting, on by default): anisotropic voxels that keep each face of a
-// surface on its own side, for thin walls (issue 13 item 6). The voxelizer also writes six
+// Face sides (`faceSides`, a developer setting, on by default): anisotropic voxels that keep each
+// face of a surface on its own side, for thin walls (issue 13 item 6). The voxelizer also writes six
 // per-side normal volumes (both faces of every fragment; a face skips a voxel lying wholly behind
 // it; a surface within kVCTSideMargin of a voxel boundary also fills the voxel across it),
 // injection lights each side under its own normal (inject.comp), and the atlas is built from the
@@ -48,9 +48,9 @@
 // occluder (vct_cornell 0.783 -> 0.829 SSIM at 128x96 with that change; the shift test's worst
 // +16.7 % -> +5.2 %). With bounceTail as well (the bounces left out, bounce.comp) vct_cornell
 // reached 0.855. They became the defaults, with the tail, once the screen trace staggered their
-// samples by pixel (trace.glsl gVCTJitter), which brought the shift test under its 5 % (figures
-// and what they cost in vct_settings.h). The two-room leak is then 6.1 % where the test scene's
-// wall falls and 7-25 % at other alignments (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls):
+// samples by pixel (traceCone's phase, trace.glsl), which brought the shift test under its 5 %
+// (figures and what they cost in vct_settings.h). The two-room leak is then 6.1 % where the test
+// scene's wall falls and 7-25 % at other alignments (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls):
 // issue 13's 5 % is not met.
 //   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
 //      specular cone along the reflection gives radiance for the composite's split-sum weight;
@@ -59,8 +59,9 @@
 //      trace is most of the frame's cost on a CPU rasterizer. A joint bilateral filter (depth and
 //      normal) upsamples it [vct.upsample], at scale 1 too, since it also averages out the 2 x 2
 //      pattern by which neighbouring traced pixels stagger their cones' samples along the cone
-//      (so the indirect light does not depend on where the scene falls in the grid). The trace counts its work (traced pixels,
-//      cones, cone steps, texture calls; report(), stats.json "vct"), which carries over to a GPU.
+//      (so the indirect light does not depend on where the scene falls in the grid). The trace
+//      counts its work (traced pixels, cones, cone steps, texture calls; report(), stats.json
+//      "vct"), which carries over to a GPU.
 //
 // Grids (`mode`):
 //   - dense: one grid, the scene's bounding cube (2 % larger), so any glTF without a preset works.

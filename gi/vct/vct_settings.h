@@ -80,10 +80,10 @@ struct VCTSettings {
     // layers a cone passes edge-on, so a cone rising at 45 degrees through a ceiling read the
     // roof's sunlit top at any resolution: 9.5x the reference's one-bounce light in a sunlit
     // room with 0.6 m walls, 1.2x with face sides), and a sample drops the receiver's own plane,
-    // so an open floor gathers all of the sky (55 % without). The defaults since issue 13's stop 45,
-    // with bounceTail: once the screen trace staggered their samples by pixel (trace.glsl
-    // gVCTJitter) they passed the shift test (+2.5 / +3.3 / +2.8 %, bound 5 %; +3.5 / +6.2 /
-    // +5.3 % unstaggered). On 20 scenes at 128x96 with no preset, against 1024-spp references
+    // so an open floor gathers all of the sky (55 % without). The defaults since issue 13's stop
+    // 45, with bounceTail: once the screen trace staggered their samples by pixel (traceCone's
+    // phase, trace.glsl) they passed the shift test (+2.5 / +3.3 / +2.8 %, bound 5 %; +3.5 /
+    // +6.2 / +5.3 % unstaggered). On 20 scenes at 128x96 with no preset, against 1024-spp references
     // (the five generated rooms, the nine Cornell files, the scenes of vct_cornell, vct_basic and
     // vct_sponza, and three never loaded before: a room turned 30 degrees lit by a point light, a
     // 6 m hall with a balcony lit by a spot aimed at a wall, an open shed in a low sun), mean SSIM

@@ -40,7 +40,7 @@ vec3 hemisphere(vec3 p, vec3 n, float albedo) {
     float enclosed = 0.0;
     for (int i = 0; i < uVCT.coneCount; ++i) {
         float occlusion;
-        vec4 c = traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, 0.0, occlusion);
+        vec4 c = traceCone(p, n, frame * uVCT.cones[i].xyz, uVCT.tanHalf, uVCT.maxDistance, 0.0, kVCTPhaseUnstaggered, occlusion);
         e += uVCT.cones[i].w * c.rgb;
         enclosed += uVCT.cones[i].w * c.a;
     }

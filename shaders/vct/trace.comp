@@ -44,18 +44,17 @@ void trace(ivec2 q) {
         vec3 p = w.xyz / w.w;
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
         mat3 frame = tangentFrame(n);
-#if VCT_SIDES
-        // The 2 x 2 ordered pattern of the cones' sample phases (trace.glsl gVCTJitter): 1/8, 5/8, 7/8, 3/8.
+        // With face sides, the 2 x 2 ordered pattern of the cones' sample phases (trace.glsl
+        // traceCone): 1/8, 5/8, 7/8, 3/8.
         ivec2 b = q & 1;
-        gVCTJitter = (float(2 * (b.x ^ b.y) + b.y) + 0.5) * 0.25;
-#endif
+        float phase = VCT_SIDES != 0 ? (float(2 * (b.x ^ b.y) + b.y) + 0.5) * 0.25 : kVCTPhaseUnstaggered;
         float visibility = 0.0;
         countWork(kVCTWorkPixels, 1u);
         countWork(kVCTWorkCones, uint(uVCT.coneCount + (uVCT.specularCone != 0 ? 1 : 0)));
         for (int i = 0; i < uVCT.coneCount; ++i) {
             float occlusion;
             vec3 dir = frame * uVCT.cones[i].xyz;
-            vec4 c = traceCone(p, n, dir, uVCT.tanHalf, uVCT.maxDistance, uVCT.occlusionDistance, occlusion);
+            vec4 c = traceCone(p, n, dir, uVCT.tanHalf, uVCT.maxDistance, uVCT.occlusionDistance, phase, occlusion);
             indirect += uVCT.cones[i].w * (c.rgb + (1.0 - c.a) * skyRadiance(dir, uVCT.sky.w));
             visibility += uVCT.cones[i].w * (1.0 - occlusion);
         }
@@ -67,7 +66,7 @@ void trace(ivec2 q) {
             float roughness = texelFetch(uMaterial, px, 0).r;
             float aperture = mix(uVCT.specularAperture.x, uVCT.specularAperture.y, roughness);
             float occlusion;
-            vec4 c = traceCone(p, n, r, tan(0.5 * aperture), uVCT.maxDistance, 0.0, occlusion);
+            vec4 c = traceCone(p, n, r, tan(0.5 * aperture), uVCT.maxDistance, 0.0, phase, occlusion);
             specular = uVCT.intensity * (c.rgb + (1.0 - c.a) * skyRadiance(r, roughness));
         }
     }

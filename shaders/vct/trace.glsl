@@ -49,23 +49,6 @@ layout(binding = kVCTUnitSH + 1) uniform sampler3D uSHG;
 layout(binding = kVCTUnitSH + 2) uniform sampler3D uSHB;
 #endif
 
-// Where along the cone the samples fall, in [0, 1) (0.5 when unset): the start is scaled by
-// r^(jitter - 0.5), r = 1 + 2 stepMultiplier tanHalf being the ratio of one sample's distance to
-// the previous one's once the cone is wider than a voxel, so the samples of the march move by up to
-// half a step either way along it, the same fraction of a step at every step. With face sides the
-// screen trace sets it from its pixel by a 2 x 2 pattern (trace.comp) that the upsampling filter
-// averages out (upsample.comp). Without it every pixel of a wall along an axis sampled the voxels
-// at the same phase, so what a view gathered depended on where the scene fell in the grid: the
-// shift test (VCTGL.IndirectLightDoesNotDependOnWhereTheSceneFallsInTheGrid, face sides, the
-// tail, three bounces) +3.5 / +6.2 / +5.3 % -> +2.5 / +3.3 / +2.8 %, and a floor under a panel
-// 74-109 % of the analytic light as the nudge went 0-4 -> 90 % at each. The phase the unset value
-// gives was a lucky one in two tests, which now see the average of four: the sky through a closed
-// box's walls (VCTGL.ConesThatEndUnoccludedSeeTheSky) and the two-room leak. Without face sides
-// it is left unset: the cones that start nearer the floor lose its light to self-occlusion
-// (87 -> 78 % of the panel's light at the default nudge). The voxel bounce leaves it unset too:
-// staggering it by voxel did not help there (at 0.5 voxel, +3.7 against +3.9 %).
-float gVCTJitter = 0.5;
-
 // Work counted for the screen trace's report (trace.comp sums them; bounce.comp leaves them
 // unread): cone steps taken and texture calls made, by this invocation.
 uint gVCTSamples = 0u, gVCTFetches = 0u;
@@ -221,12 +204,29 @@ bool sampleVoxels(vec3 p, float diameter, float step, vec3 dir, out vec4 s) {
 }
 
 // Marches one cone; `occlusion` receives the opacity gathered within occlusionDistance.
-vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, float occlusionDistance,
+// `phase`, in [0, 1), is where along the cone the samples fall (kVCTPhaseUnstaggered: where they
+// always had): the start is scaled by r^(phase - 0.5), r = 1 + 2 stepMultiplier tanHalf being the
+// ratio of one sample's distance to the previous one's once the cone is wider than a voxel, so
+// the samples of the march move by up to half a step either way along it, the same fraction of a
+// step at every step. With face sides the screen trace takes it from its pixel by a 2 x 2 pattern
+// (trace.comp) that the upsampling filter averages out (upsample.comp). Unstaggered, every pixel
+// of a wall along an axis sampled the voxels at the same phase, so what a view gathered depended
+// on where the scene fell in the grid: the shift test
+// (VCTGL.IndirectLightDoesNotDependOnWhereTheSceneFallsInTheGrid, face sides, the tail, three
+// bounces) +3.5 / +6.2 / +5.3 % -> +2.5 / +3.3 / +2.8 %, and a floor under a panel 74-109 % of
+// the analytic light as the nudge went 0-4 -> 90 % at each. The unstaggered phase was a lucky one
+// in two tests, which now see the average of four: the sky through a closed box's walls
+// (VCTGL.ConesThatEndUnoccludedSeeTheSky) and the two-room leak. Without face sides the screen
+// trace stays unstaggered: the cones that start nearer the floor lose its light to
+// self-occlusion (87 -> 78 % of the panel's light at the default nudge). The voxel bounce does
+// too: staggering it by voxel did not help there (at 0.5 voxel, +3.7 against +3.9 %).
+const float kVCTPhaseUnstaggered = 0.5;
+vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, float occlusionDistance, float phase,
                out float occlusion) {
     float voxel = uVCT.levelMinCell[0].w;
     gVCTApex = apex;
     gVCTApexNormal = n;
-    float t = vctConeStart(uVCT.nudge, voxel, dot(n, dir)) * pow(1.0 + 2.0 * uVCT.stepMultiplier * tanHalf, gVCTJitter - 0.5);
+    float t = vctConeStart(uVCT.nudge, voxel, dot(n, dir)) * pow(1.0 + 2.0 * uVCT.stepMultiplier * tanHalf, phase - 0.5);
     vec4 acc = vec4(0.0);
     occlusion = 0.0;
     for (int i = 0; i < kVCTMaxConeSteps && t < maxDistance && acc.a < kVCTOpaque; ++i) {

@@ -4,7 +4,7 @@
 // (max(n . n_q, 0)^8). Where no neighbour matches (thin objects, silhouettes) the best match
 // alone is used. The traced pixel q stands for the full pixel under its centre, as in trace.comp.
 // Why the wide tent: the trace staggers its cones' samples by a 2 x 2 pattern (trace.glsl
-// gVCTJitter), and along each axis a tent of half-width 2 gives the even and the odd traced pixels
+// traceCone), and along each axis a tent of half-width 2 gives the even and the odd traced pixels
 // the same total weight wherever the full pixel lies (t + 2 - t against 1 - t + 1 + t), so the
 // pattern cancels on any surface the weights do not cut; a bilinear 2 x 2 left it as a
 // checkerboard. It runs at traceScale 1 too, where it is a 1-2-1 filter.
