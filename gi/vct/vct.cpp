@@ -29,7 +29,6 @@ size_t mipChain(size_t bytesPerTexel, int res, int levels) {
 }
 
 int levelCountOf(const VCTSettings& s) { return s.mode == VCTMode::Dense ? 1 : s.levelCount; }
-bool anisotropicOn(const VCTSettings& s) { return s.anisotropic && !s.sh && s.mode == VCTMode::Dense; }
 bool shOn(const VCTSettings& s) { return s.sh && s.mode == VCTMode::Dense; }
 
 // Positive remainder, for toroidal texel offsets.
@@ -96,8 +95,8 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     size_t bytes = perLevel * size_t(levelCountOf(s));
     double traced = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
     bytes += size_t(traced) * 16;  // the traced images the upsampling filter reads
-    if (anisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
-    if (anisotropicOn(s) && s.faceSides) {
+    if (vctAnisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
+    if (vctFaceSidesOn(s)) {
         bytes += 6 * mipChain(2, res, mips) + mipChain(8, res, mips);   // the coverage atlas, the centroids
         bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
         if (s.bounceCount > 1) bytes += 6 * voxels(res) * 8 * size_t(levelCountOf(s));  // and with the bounced light
@@ -111,8 +110,8 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     int count = levelCountOf(s);
     if (any(Cost(changes), Cost::Recompile)) {
         // The level count and the voxel layout are compiled into the bounce and trace programs.
-        mAnisotropic = anisotropicOn(s);
-        mFaceSides = mAnisotropic && s.faceSides;
+        mAnisotropic = vctAnisotropicOn(s);
+        mFaceSides = vctFaceSidesOn(s);
         mSHVoxels = shOn(s);
         std::vector<std::string> defines = {"VCT_LEVELS " + std::to_string(count),
                                             std::string("VCT_ANISO ") + (mAnisotropic ? "1" : "0"),

@@ -49,9 +49,10 @@
 // +16.7 % -> +5.2 %). With bounceTail as well (the bounces left out, bounce.comp) vct_cornell
 // reached 0.855. They became the defaults, with the tail, once the screen trace staggered their
 // samples by pixel (traceCone's phase, trace.glsl), which brought the shift test under its 5 %
-// (figures and what they cost in vct_settings.h). The two-room leak is then 6.1 % where the test
-// scene's wall falls and 7-25 % at other alignments (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls):
-// issue 13's 5 % is not met.
+// (figures and what they cost in vct_settings.h). The two-room leak is then 4.1 % where the test
+// scene's wall falls, under issue 13's 5 %, once their cones' start is not divided by n.w
+// (vctConeStart, vct_shared.h; 6.1 % with the division), and 5-21 % at other alignments
+// (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls), where the 5 % is not met.
 //   5. Trace [vct.trace]: per pixel, the diffuse cone set (gi/vct/cone_set.h) gives E / pi; the
 //      specular cone along the reflection gives radiance for the composite's split-sum weight;
 //      VAO scales the indirect light by the cones' visibility (shaders/vct/trace.glsl). With

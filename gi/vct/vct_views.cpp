@@ -164,7 +164,7 @@ std::vector<ConeGlyph> vctConeGlyphs(const VCTSettings& s, const glm::vec3& p, c
     std::vector<ConeGlyph> glyphs;
     glm::mat3 frame = vctTangentFrame(n);
     // Where trace.glsl's traceCone starts its march.
-    auto start = [&](const glm::vec3& dir) { return vct::vctConeStart(s.nudge, voxelSize, glm::dot(n, dir)); };
+    auto start = [&](const glm::vec3& dir) { return vct::vctConeStart(s.nudge, voxelSize, glm::dot(n, dir), vctFaceSidesOn(s)); };
     ConeSet set = makeConeSet(s);
     for (const Cone& c : set.cones) {
         ConeGlyph g;

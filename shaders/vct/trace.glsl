@@ -1,8 +1,9 @@
 // Cone tracing through the voxel levels (seed 000 section 1, seed 003 section 1), shared by the
 // screen trace (trace.comp) and the voxel bounce (bounce.comp).
 //
-// A cone with half-angle tan `tanHalf` starts `nudge` voxel diagonals from the apex divided by
-// n.w (seed 000 eq. 3.4; n.w is clamped at 0.25 so grazing cones do not start far away), then
+// A cone with half-angle tan `tanHalf` starts `nudge` voxel diagonals from the apex, divided by
+// n.w without face sides (seed 000 eq. 3.4; n.w is clamped at 0.25 so grazing cones do not start
+// far away; vctConeStart in vct_shared.h says why face sides leave the division out), then
 // marches: diameter d = max(2 tanHalf t, voxel), sample at lod = log2(d / voxel) - kVCTFootprintLod
 // (below), composite front to back (C += (1 - a) c, a += (1 - a) a_s), advance by
 // stepMultiplier * d. A step longer than the sample's texel thickens its opacity to
@@ -226,7 +227,7 @@ vec4 traceCone(vec3 apex, vec3 n, vec3 dir, float tanHalf, float maxDistance, fl
     float voxel = uVCT.levelMinCell[0].w;
     gVCTApex = apex;
     gVCTApexNormal = n;
-    float t = vctConeStart(uVCT.nudge, voxel, dot(n, dir)) * pow(1.0 + 2.0 * uVCT.stepMultiplier * tanHalf, phase - 0.5);
+    float t = vctConeStart(uVCT.nudge, voxel, dot(n, dir), VCT_SIDES != 0) * pow(1.0 + 2.0 * uVCT.stepMultiplier * tanHalf, phase - 0.5);
     vec4 acc = vec4(0.0);
     occlusion = 0.0;
     for (int i = 0; i < kVCTMaxConeSteps && t < maxDistance && acc.a < kVCTOpaque; ++i) {
