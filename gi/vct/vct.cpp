@@ -94,7 +94,7 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     if (s.bounceCount > 1) perLevel += 2 * voxels(res) * 8 + voxels(res) * 4;  // bounced radiance, occupied list
     size_t bytes = perLevel * size_t(levelCountOf(s));
     double traced = std::ceil(double(fs.width) * s.traceScale) * std::ceil(double(fs.height) * s.traceScale);
-    bytes += size_t(traced) * 16;  // the traced images the upsampling filter reads
+    bytes += size_t(traced) * 32;  // the traced images the upsampling filter reads: light, specular, guide
     if (vctAnisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
     if (vctFaceSidesOn(s)) {
         bytes += 6 * mipChain(2, res, mips) + mipChain(8, res, mips);   // the coverage atlas, the centroids
@@ -457,10 +457,15 @@ void VCT::trace(const FrameContext& ctx) {
     if (mLowIndirect.width() != low.x || mLowIndirect.height() != low.y) {
         mLowIndirect = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
         mLowSpecular = gl::Texture::create2D(GL_RGBA16F, low.x, low.y);
+        mLowGuide = gl::Texture::create2D(GL_RGBA32F, low.x, low.y);
     }
     glm::vec2 toFull = glm::vec2(full) / glm::vec2(low);
     p.imageSize = glm::ivec4(low, full);
     p.toFull = glm::vec4(toFull, 0.0f, 0.0f);
+    // The clip planes of the projection drawn with (the renderer's rasterCamera), from its matrix:
+    // the trace writes its pixels' view depth for the upsampling filter (vctViewDepth).
+    p.nearPlane = ctx.proj[3][2] / (ctx.proj[2][2] - 1.0f);
+    p.farPlane = ctx.proj[3][2] / (ctx.proj[2][2] + 1.0f);
     mTraceProg.use();
     mBlock.set(p);
     bindRadiance();
@@ -469,6 +474,7 @@ void VCT::trace(const FrameContext& ctx) {
     glBindTextureUnit(shared::kUnitDepth, ctx.depth);
     glBindImageTexture(vct::kVCTImageIndirect, mLowIndirect.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(vct::kVCTImageSpecular, mLowSpecular.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(vct::kVCTImageGuide, mLowGuide.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (!mWork.id()) mWork = gl::createBuffer(2 * vct::kVCTWorkCount * sizeof(GLuint), nullptr, 0);
     glClearNamedBufferData(mWork.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, vct::kVCTBufferWork, mWork.id());
@@ -480,13 +486,13 @@ void VCT::trace(const FrameContext& ctx) {
     vct::VCTParams u{};
     u.imageSize = glm::ivec4(low, full);
     u.toFull = glm::vec4(toFull, 0.0f, 0.0f);
-    // The clip planes of the projection drawn with (the renderer's rasterCamera), from its matrix.
-    u.nearPlane = ctx.proj[3][2] / (ctx.proj[2][2] - 1.0f);
-    u.farPlane = ctx.proj[3][2] / (ctx.proj[2][2] + 1.0f);
+    u.nearPlane = p.nearPlane;
+    u.farPlane = p.farPlane;
     mUpsampleProg.use();
     mBlock.set(u);
     glBindTextureUnit(vct::kVCTUnitLowIndirect, mLowIndirect.id());
     glBindTextureUnit(vct::kVCTUnitLowSpecular, mLowSpecular.id());
+    glBindTextureUnit(vct::kVCTUnitLowGuide, mLowGuide.id());
     glBindImageTexture(vct::kVCTImageIndirect, ctx.indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(vct::kVCTImageSpecular, ctx.indirectSpecular, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(gl::groupCount(full.x, shared::kGroup2D), gl::groupCount(full.y, shared::kGroup2D), 1);
@@ -520,7 +526,7 @@ std::vector<DebugView> VCT::debugViews() const {
 
 size_t VCT::passMemory(const std::string& pass) const {
     if (pass == "vct.voxelize") return mVoxelBytes;
-    if (pass == "vct.upsample") return mLowIndirect.bytes() + mLowSpecular.bytes();
+    if (pass == "vct.upsample") return traceTargetBytes();
     if (pass == "vct.mip") return mRadianceBytes;
     return 0;
 }
@@ -550,8 +556,8 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
     }
     if (mSHVoxels) v.push_back({"sh", r + "RGBA16F x 3" + mips, 3 * mSH[0].bytes()});
     if (mLowIndirect.bytes())
-        v.push_back({"traceTargets", std::to_string(mLowIndirect.width()) + "x" + std::to_string(mLowIndirect.height()) + " RGBA16F x 2",
-                     mLowIndirect.bytes() + mLowSpecular.bytes()});
+        v.push_back({"traceTargets", std::to_string(mLowIndirect.width()) + "x" + std::to_string(mLowIndirect.height()) + " RGBA16F x 2, RGBA32F",
+                     traceTargetBytes()});
     return v;
 }
 
@@ -585,7 +591,7 @@ PassReport VCT::report(const FrameSettings&) const {
 std::unique_ptr<Pass> VCTSettings::createPass() { return std::make_unique<VCT>(); }
 size_t VCTSettings::estimateBytes(const FrameSettings& fs) { return VCT::estimateBytes(fs); }
 
-size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + mLowIndirect.bytes() + mLowSpecular.bytes(); }
+size_t VCT::memoryBytes() const { return mVoxelBytes + mRadianceBytes + traceTargetBytes(); }
 
 bool VCT::reloadShaders(std::string& log) {
     mLit = false;  // the edited shaders light the volumes afresh

@@ -208,7 +208,9 @@ private:
     SurfaceVoxelizer mSurfaces;  // passes 1 and 2
     gl::Program mResolveProg, mMipProg, mUpsampleProg;
     gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
-    gl::Texture mLowIndirect, mLowSpecular;  // the cone trace at traceScale < 1
+    gl::Texture mLowIndirect, mLowSpecular;  // the cone trace's light, at traceScale
+    gl::Texture mLowGuide;                   // its pixels' normal and view depth, which the upsampling filter weighs them by
+    size_t traceTargetBytes() const { return mLowIndirect.bytes() + mLowSpecular.bytes() + mLowGuide.bytes(); }
     gl::Buffer mWork;                        // trace.comp's counters (kVCTBufferWork)
     gl::Program mCompactProg;
     gl::UniformBlock<vct::VCTParams> mBlock;  // every pass reads it

@@ -18,6 +18,7 @@ layout(binding = kUnitMaterial) uniform sampler2D uMaterial;
 layout(binding = kUnitDepth) uniform sampler2D uDepth;
 layout(binding = kVCTImageIndirect, rgba16f) uniform writeonly image2D uIndirect;
 layout(binding = kVCTImageSpecular, rgba16f) uniform writeonly image2D uSpecular;
+layout(binding = kVCTImageGuide, rgba32f) uniform writeonly image2D uGuide;
 layout(binding = kVCTUnitSky) uniform samplerCube uSky;
 layout(std430, binding = kVCTBufferWork) buffer Work { uint uWork[2 * kVCTWorkCount]; };  // (low, high) pairs
 
@@ -38,11 +39,14 @@ void trace(ivec2 q) {
     ivec2 px = min(ivec2((vec2(q) + 0.5) * uVCT.toFull.xy), uVCT.imageSize.zw - 1);
     float depth = texelFetch(uDepth, px, 0).r;
     vec3 indirect = vec3(0.0), specular = vec3(0.0);
+    // What the upsampling filter weighs this traced pixel by: its normal and view depth (w < 0: no surface).
+    vec4 guide = vec4(0.0, 0.0, 0.0, -1.0);
     if (depth < 1.0) {
         vec2 uv = (vec2(px) + 0.5) / vec2(uVCT.imageSize.zw);
         vec4 w = uVCT.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         vec3 p = w.xyz / w.w;
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
+        guide = vec4(n, vctViewDepth(depth, uVCT.nearPlane, uVCT.farPlane));
         mat3 frame = tangentFrame(n);
         // With face sides, the 2 x 2 ordered pattern of the cones' sample phases (trace.glsl
         // traceCone): 1/8, 5/8, 7/8, 3/8.
@@ -72,6 +76,7 @@ void trace(ivec2 q) {
     }
     imageStore(uIndirect, q, vec4(indirect, 1.0));
     imageStore(uSpecular, q, vec4(specular, 1.0));
+    imageStore(uGuide, q, guide);
     countWork(kVCTWorkSamples, gVCTSamples);
     countWork(kVCTWorkFetches, gVCTFetches);
 }

@@ -35,6 +35,7 @@ GI_CONST int kVCTUnitAnisoCoverage = 18;  // trace: the anisotropic atlas's faci
 GI_CONST int kVCTUnitCentroid = 17;    // trace, bounce (faceSides): the centroid volume, with mips (resolve.comp)
 GI_CONST int kVCTUnitLowIndirect = 0;  // upsample: the traced images (beside the G-buffer's normal and depth)
 GI_CONST int kVCTUnitLowSpecular = 3;
+GI_CONST int kVCTUnitLowGuide = 2;     // upsample: each traced pixel's normal and view depth (trace.comp writes them)
 GI_CONST int kVCTUnitViewOccupancy = 0;  // voxel view (gi/vct/vct_views.h): packed albedo, a > 0 where voxelized
 GI_CONST int kVCTUnitViewPacked = 1;     // the packed source shown (albedo or normal)
 GI_CONST int kVCTUnitViewRadiance = 2;   // premultiplied radiance + opacity, with mips
@@ -61,6 +62,7 @@ GI_CONST int kVCTImageMipDest = 0;     // mip: the level written
 GI_CONST int kVCTImageMipDestCoverage = 1;  // mip (anisotropic): the coverage atlas's level written
 GI_CONST int kVCTImageIndirect = 0;    // trace (at traceScale) and upsample (full size): diffuse
 GI_CONST int kVCTImageSpecular = 1;    // and specular indirect light
+GI_CONST int kVCTImageGuide = 2;       // trace: the traced pixels' normal and view depth (w < 0: no surface), RGBA32F
 
 // Shader storage bindings of compact.comp's occupied-voxel list, which bounce.comp reads.
 GI_CONST int kVCTBufferDispatch = 0;   // indirect dispatch arguments and the entry count
@@ -114,6 +116,13 @@ GI_CONST float kVCTTailMinRemainder = 0.2;
 GI_FUNC float vctConeStart(float nudge, float voxel, float nDotDir, bool faceSides) {
     float cosine = faceSides ? 1.0f : (nDotDir > kVCTMinStartCosine ? nDotDir : kVCTMinStartCosine);
     return nudge * voxel * kSqrt3 / cosine;
+}
+
+// The view-space depth of a depth-buffer value, for the clip planes the frame was drawn with
+// (trace.comp writes it for each traced pixel, upsample.comp compares it with its own pixel's).
+GI_FUNC float vctViewDepth(float depth, float nearPlane, float farPlane) {
+    float z = depth * 2.0f - 1.0f;
+    return 2.0f * nearPlane * farPlane / (farPlane + nearPlane - z * (farPlane - nearPlane));
 }
 
 // Encodings of the voxel volumes (r32ui holding RGBA8: rgb = running average, a = sample count).
@@ -183,7 +192,7 @@ struct VCTParams {
     float vaoStrength;
     float intensity;
     int specularCone;
-    float nearPlane;     // upsample: the camera's clip planes
+    float nearPlane;     // trace, upsample: the camera's clip planes (vctViewDepth)
     float farPlane;
     float exposureScale;  // voxel view: radiance
     float opacityThreshold;  // voxel view: radiance voxels below it are empty
