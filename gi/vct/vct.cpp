@@ -77,10 +77,11 @@ std::vector<VoxelBox> vctLevels(const VCTSettings& s, const glm::vec3& sceneMin,
 VCT::VCT()
     : mResolveProg("vct.resolve", {{GL_COMPUTE_SHADER, "vct/resolve.comp"}}),
       mMipProg("vct.mip", {{GL_COMPUTE_SHADER, "vct/mip.comp"}}),
+      mOctantsProg("vct.octants", {{GL_COMPUTE_SHADER, "vct/octants.comp"}}),
       mUpsampleProg("vct.upsample", {{GL_COMPUTE_SHADER, "vct/upsample.comp"}}),
       mCompactProg("vct.compact", {{GL_COMPUTE_SHADER, "vct/compact.comp"}}),
       mBlock(vct::kVCTBlockName, vct::kVCTBlockBinding) {
-    for (gl::Program* p : {&mResolveProg, &mMipProg, &mUpsampleProg, &mCompactProg}) mBlock.requireIn(*p);
+    for (gl::Program* p : {&mResolveProg, &mMipProg, &mOctantsProg, &mUpsampleProg, &mCompactProg}) mBlock.requireIn(*p);
     mLinear = makeSampler(GL_CLAMP_TO_BORDER, GL_LINEAR_MIPMAP_LINEAR);
     mRepeat = makeSampler(GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR);
 }
@@ -98,6 +99,7 @@ size_t VCT::estimateBytes(const FrameSettings& fs) {
     if (vctAnisotropicOn(s)) bytes += 6 * mipChain(8, res, mips);  // the atlas, from level 0 up
     if (vctFaceSidesOn(s)) {
         bytes += 6 * mipChain(2, res, mips) + mipChain(8, res, mips);   // the coverage atlas, the centroids
+        bytes += 8 * mipChain(8, res, mips);                            // the coverage by octant
         bytes += 6 * voxels(res) * (4 + 8) * size_t(levelCountOf(s));  // sides, their radiance
         if (s.bounceCount > 1) bytes += 6 * voxels(res) * 8 * size_t(levelCountOf(s));  // and with the bounced light
     }
@@ -144,6 +146,7 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     }
     mAniso = gl::Texture();
     mAnisoCoverage = gl::Texture();
+    mCoverageOctants = gl::Texture();
     for (auto& t : mSH) t = gl::Texture();
     mCentroid = gl::Texture();
     if (mAnisotropic) {
@@ -152,8 +155,9 @@ void VCT::allocate(const FrameSettings& fs, uint8_t changes) {
     }
     if (mFaceSides) {
         mAnisoCoverage = gl::Texture::create3D(GL_R16F, 6 * r, r, r, mMipCount);
+        mCoverageOctants = gl::Texture::create3D(GL_RGBA16F, 8 * r, r, r, mMipCount);
         mCentroid = gl::Texture::create3D(GL_RGBA16F, r, r, r, mMipCount);
-        mRadianceBytes += mAnisoCoverage.bytes() + mCentroid.bytes();
+        mRadianceBytes += mAnisoCoverage.bytes() + mCoverageOctants.bytes() + mCentroid.bytes();
     }
     if (mSHVoxels)
         for (auto& t : mSH) {
@@ -321,6 +325,19 @@ void VCT::buildMips(bool bounced) {
                 glCopyImageSubData(mLevels[0].radiance.id(), GL_TEXTURE_3D, 0, 0, 0, 0, mAniso.id(), GL_TEXTURE_3D, 0, d * r, 0, 0, r, r, r);
             for (int m = 1; m < mMipCount; ++m) level(mAniso, m - 1, mAniso, m, d, r >> m, d * (r >> (m - 1)), d * (r >> m));
         }
+        if (mFaceSides) {  // the coverage regrouped by octant for the trace, every mip (octants.comp)
+            mOctantsProg.use();
+            glBindTextureUnit(vct::kVCTUnitMipSourceCoverage, mAnisoCoverage.id());
+            for (int m = 0; m < mMipCount; ++m) {
+                vct::VCTParams p{};
+                p.sourceLevel = m;
+                p.destSize = glm::ivec4(glm::ivec3(r >> m), 0);
+                mBlock.set(p);
+                glBindImageTexture(vct::kVCTImageOctants, mCoverageOctants.id(), m, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+                gl::dispatch3D(r >> m);
+            }
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        }
     }
 }
 
@@ -332,8 +349,8 @@ void VCT::bindRadiance() const {
     }
     glBindTextureUnit(GLuint(vct::kVCTUnitAniso), mAniso.id());
     glBindSampler(GLuint(vct::kVCTUnitAniso), mLinear.id());
-    glBindSampler(GLuint(vct::kVCTUnitAnisoCoverage), mLinear.id());
-    glBindTextureUnit(GLuint(vct::kVCTUnitAnisoCoverage), mAnisoCoverage.id());
+    glBindSampler(GLuint(vct::kVCTUnitCoverageOctants), mLinear.id());
+    glBindTextureUnit(GLuint(vct::kVCTUnitCoverageOctants), mCoverageOctants.id());
     glBindSampler(GLuint(vct::kVCTUnitCentroid), mLinear.id());
     glBindTextureUnit(GLuint(vct::kVCTUnitCentroid), mCentroid.id());
     for (int c = 0; c < 3; ++c) {
@@ -552,6 +569,7 @@ std::vector<VolumeMemory> VCT::volumeMemory() const {
                      mAniso.bytes()});
     if (mFaceSides) {
         v.push_back({"coverage", r + "R16F x 6 (one atlas)" + mips, mAnisoCoverage.bytes()});
+        v.push_back({"coverageOctants", r + "RGBA16F x 8 (one atlas)" + mips, mCoverageOctants.bytes()});
         v.push_back({"centroid", r + "RGBA16F" + mips, mCentroid.bytes()});
     }
     if (mSHVoxels) v.push_back({"sh", r + "RGBA16F x 3" + mips, 3 * mSH[0].bytes()});

@@ -206,7 +206,7 @@ public:
 
 private:
     SurfaceVoxelizer mSurfaces;  // passes 1 and 2
-    gl::Program mResolveProg, mMipProg, mUpsampleProg;
+    gl::Program mResolveProg, mMipProg, mOctantsProg, mUpsampleProg;
     gl::Program mBounceProg, mTraceProg;  // variants of the level count, anisotropic and SH (allocate())
     gl::Texture mLowIndirect, mLowSpecular;  // the cone trace's light, at traceScale
     gl::Texture mLowGuide;                   // its pixels' normal and view depth, which the upsampling filter weighs them by
@@ -217,6 +217,7 @@ private:
     std::vector<Level> mLevels;
     gl::Texture mAniso;  // anisotropicAtlas()
     gl::Texture mAnisoCoverage;  // R16F beside it: the facing coverage (mip.comp)
+    gl::Texture mCoverageOctants;  // RGBA16F x 8: the coverage regrouped by octant, what the trace reads (octants.comp)
     gl::Texture mCentroid;       // faceSides: RGBA16F, the mean position of the voxels' content with mips (resolve.comp)
     std::array<gl::Texture, 3> mSH;
     gl::Sampler mLinear, mRepeat;

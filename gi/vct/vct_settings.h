@@ -96,8 +96,10 @@ struct VCTSettings {
     // from 60 % to 4.1 % where the test scene's wall falls (issue 13 asks for 5 %; 6.1 % before
     // their cones' start stopped being divided by n.w, vctConeStart in vct_shared.h) and to 5-21 %
     // at other alignments (VCTGL.FaceSidesCutTheLeakWhereverTheWallFalls; 57-68 % without). What
-    // they cost: a sample makes 7 texture calls instead of 3 (rgb, coverage and opacity need two
-    // reads per direction, and the centroid one), and the voxel passes keep six sides per voxel.
+    // they cost: a sample makes up to 5 texture calls instead of 3 (the atlas per direction, the
+    // three directions' coverage in one call from the octant atlas, octants.comp, and the
+    // centroid; 4.85 a sample on vct_cornell, 6.70 when the coverage took a call per direction),
+    // and the voxel passes keep six sides per voxel.
     bool faceSides = true;
     bool specularCone = true;         // trace one cone along the reflection, aperture from roughness
     float specularApertureMin = 1.0f;   // specular cone aperture at roughness 0, degrees

@@ -40,7 +40,7 @@ layout(binding = kVCTUnitRadiance) uniform sampler3D uRadiance[VCT_LEVELS];
 #if VCT_ANISO
 layout(binding = kVCTUnitAniso) uniform sampler3D uAniso;  // +X -X +Y -Y +Z -Z side by side along x
 #if VCT_SIDES
-layout(binding = kVCTUnitAnisoCoverage) uniform sampler3D uAnisoCoverage;  // the atlas's facing coverage (mip.comp)
+layout(binding = kVCTUnitCoverageOctants) uniform sampler3D uCoverageOctants;  // the facing coverage by octant (octants.comp)
 layout(binding = kVCTUnitCentroid) uniform sampler3D uCentroid;  // mean position of the voxels' content (resolve.comp)
 #endif
 #endif
@@ -100,24 +100,20 @@ vec4 sampleAniso(vec3 tc, float lod, vec3 dir) {
     // a zero-weight read in a sum or a branch is still executed, masked.
     int axes = (w.x > 0.0 ? 1 : 0) | (w.y > 0.0 ? 2 : 0) | (w.z > 0.0 ? 4 : 0);
     int count = bitCount(axes);
-    gVCTFetches += uint(VCT_SIDES != 0 ? 2 * count : count);
+    gVCTFetches += uint(VCT_SIDES != 0 ? count + 1 : count);
     vec4 r = vec4(0.0);
-#if VCT_SIDES
-    float coverage = 0.0;
-#endif
     for (int k = 0; k < count; ++k) {
         int a = findLSB(axes);
         axes &= axes - 1;
-        vec3 p = vec3((x + slab[a]) / 6.0, tc.yz);
-        r += w[a] * textureLod(uAniso, p, lod);
-#if VCT_SIDES
-        coverage += w[a] * textureLod(uAnisoCoverage, p, lod).r;
-#endif
+        r += w[a] * textureLod(uAniso, vec3((x + slab[a]) / 6.0, tc.yz), lod);
     }
     r *= fade;
 #if VCT_SIDES
-    // The mean radiance of the surfaces facing the cone (the coverage atlas, mip.comp), times the opacity.
-    coverage *= fade;
+    // The mean radiance of the surfaces facing the cone, times the opacity: the coverage of its
+    // three directions' slabs (mip.comp) in one call, from its octant's slab (octants.comp; an
+    // axis of zero weight adds nothing whichever sign it takes).
+    int octant = int(dir.x <= 0.0) | (int(dir.y <= 0.0) << 1) | (int(dir.z <= 0.0) << 2);
+    float coverage = fade * dot(w, textureLod(uCoverageOctants, vec3((x + float(octant)) / 8.0, tc.yz), lod).rgb);
     return vec4(coverage > 1e-6 ? r.rgb / coverage * r.a : vec3(0.0), r.a);
 #else
     return r;  // without face sides the coverage is the opacity, so r is the premultiplied radiance
