@@ -26,7 +26,8 @@
 //      volumes, one per marching direction, whose mip 0 is level 0 (copied) and whose mips above
 //      each composite the children's
 //      pairs front to back along it (seed 003 section 1.6 describes them, unimplemented there),
-//      with `faceSides` also a coverage atlas beside them (mip.comp).
+//      with `faceSides` also a coverage atlas beside them (mip.comp), which octants.comp
+//      regroups by octant so a cone sample reads its three directions' coverage in one call.
 //   Passes 2 to 4 depend on the voxels, the lights (with their shadow maps) and VCT's settings
 //   only, so while none of them changes (static geometry under static lights, the editor's
 //   steady state) the lit volumes are kept and those passes do nothing but open their timers
