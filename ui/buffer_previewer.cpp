@@ -176,8 +176,7 @@ void BufferPreviewer::readout(const DebugView& view, glm::vec2 uv) {
         glGetTextureSubImage(view.texture, 0, x, y, 0, 1, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof(float), texel);
         if (view.mode == shared::kViewLinearDepth) {
             // The same linearisation view.frag applies, as a distance.
-            float z = texel[0] * 2.0f - 1.0f;
-            float distance = 2.0f * view.near * view.far / (view.far + view.near - z * (view.far - view.near));
+            float distance = shared::viewDepthOf(texel[0], view.near, view.far);
             ImGui::Text("(%d, %d)  depth %.6f (%.3f m)", x, y, texel[0], distance);
         } else {
             ImGui::Text("(%d, %d)  depth %.6f", x, y, texel[0]);

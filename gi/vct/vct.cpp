@@ -480,7 +480,7 @@ void VCT::trace(const FrameContext& ctx) {
     p.imageSize = glm::ivec4(low, full);
     p.toFull = glm::vec4(toFull, 0.0f, 0.0f);
     // The clip planes of the projection drawn with (the renderer's rasterCamera), from its matrix:
-    // the trace writes its pixels' view depth for the upsampling filter (vctViewDepth).
+    // the trace writes its pixels' view depth for the upsampling filter (viewDepthOf).
     p.nearPlane = ctx.proj[3][2] / (ctx.proj[2][2] - 1.0f);
     p.farPlane = ctx.proj[3][2] / (ctx.proj[2][2] + 1.0f);
     mTraceProg.use();

@@ -77,6 +77,13 @@ GI_FUNC float giToneChannel(float x, int op) {
     return clamp(x, 0.0f, 1.0f);
 }
 
+// The view-space depth of an OpenGL depth-buffer value under a perspective projection with these
+// clip planes (the debug views' linear depth, the buffer previewer's readout, VCT's upsampling weights).
+GI_FUNC float viewDepthOf(float depth, float nearPlane, float farPlane) {
+    float z = depth * 2.0f - 1.0f;
+    return 2.0f * nearPlane * farPlane / (farPlane + nearPlane - z * (farPlane - nearPlane));
+}
+
 // Debug view modes (view.frag).
 GI_CONST int kViewColor = 0;        // RGB as stored (linear HDR shown with exposure, sRGB encoded)
 GI_CONST int kViewNormal = 1;       // xyz * 0.5 + 0.5

@@ -121,8 +121,7 @@ void main() {
     } else if (uRender.mode == kViewPosition) {
         c = v.w > 0.0 ? fract(v.xyz) : vec3(0.0);
     } else if (uRender.mode == kViewLinearDepth) {
-        float z = v.r * 2.0 - 1.0;
-        float linear = 2.0 * uRender.depthNear * uRender.depthFar / (uRender.depthFar + uRender.depthNear - z * (uRender.depthFar - uRender.depthNear));
+        float linear = viewDepthOf(v.r, uRender.depthNear, uRender.depthFar);
         c = vec3(1.0 - clamp(linear / uRender.range, 0.0, 1.0));
     } else if (uRender.mode == kViewRawDepth) {
         c = vec3(v.r);

@@ -46,7 +46,7 @@ void trace(ivec2 q) {
         vec4 w = uVCT.invViewProj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
         vec3 p = w.xyz / w.w;
         vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
-        guide = vec4(n, vctViewDepth(depth, uVCT.nearPlane, uVCT.farPlane));
+        guide = vec4(n, viewDepthOf(depth, uVCT.nearPlane, uVCT.farPlane));
         mat3 frame = tangentFrame(n);
         // With face sides, the 2 x 2 ordered pattern of the cones' sample phases (trace.glsl
         // traceCone): 1/8, 5/8, 7/8, 3/8.

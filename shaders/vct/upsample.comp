@@ -34,7 +34,7 @@ void main() {
         imageStore(uSpecular, px, vec4(0.0, 0.0, 0.0, 1.0));
         return;
     }
-    float z = vctViewDepth(d, uVCT.nearPlane, uVCT.farPlane);
+    float z = viewDepthOf(d, uVCT.nearPlane, uVCT.farPlane);
     vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
     vec2 f = (vec2(px) + 0.5) / uVCT.toFull.xy - 0.5;
     ivec2 base = ivec2(floor(f));

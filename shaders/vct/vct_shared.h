@@ -119,13 +119,6 @@ GI_FUNC float vctConeStart(float nudge, float voxel, float nDotDir, bool faceSid
     return nudge * voxel * kSqrt3 / cosine;
 }
 
-// The view-space depth of a depth-buffer value, for the clip planes the frame was drawn with
-// (trace.comp writes it for each traced pixel, upsample.comp compares it with its own pixel's).
-GI_FUNC float vctViewDepth(float depth, float nearPlane, float farPlane) {
-    float z = depth * 2.0f - 1.0f;
-    return 2.0f * nearPlane * farPlane / (farPlane + nearPlane - z * (farPlane - nearPlane));
-}
-
 // Encodings of the voxel volumes (r32ui holding RGBA8: rgb = running average, a = sample count).
 GI_CONST float kVCTMaxCount = 255.0;
 // A fragment joins the side of axis a its normal faces when |n[a]| exceeds this.
@@ -193,7 +186,7 @@ struct VCTParams {
     float vaoStrength;
     float intensity;
     int specularCone;
-    float nearPlane;     // trace, upsample: the camera's clip planes (vctViewDepth)
+    float nearPlane;     // trace, upsample: the camera's clip planes (viewDepthOf)
     float farPlane;
     float exposureScale;  // voxel view: radiance
     float opacityThreshold;  // voxel view: radiance voxels below it are empty
